@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Installs every Debian package that curvemesh's build, tests, benchmarks and scripts use.
+# Non-interactive and idempotent; run as root (or through sudo) on Debian 12.
+set -euo pipefail
+
+packages=(
+  # build
+  build-essential cmake ninja-build pkg-config
+  # libraries
+  libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
+  libpugixml-dev libcli11-dev nlohmann-json3-dev libtbb-dev libsuitesparse-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # fuzzing (libFuzzer with ASan/UBSan)
+  clang libclang-rt-14-dev
+  # independent readers used by the tests
+  python3 python3-numpy python3-svgelements python3-meshio python3-gmsh
+  # the drawings the corpus tests and scripts read (~8,100 SVGs, 180 MB)
+  openclipart-svg
+  # peak-memory measurement in the corpus scripts
+  time
+)
+
+if [ $# -gt 0 ]; then
+  echo "usage: scripts/install-deps.sh   (takes no options)" >&2
+  exit 2
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps.sh: all ${#packages[@]} packages already installed"
+  exit 0
+fi
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,18 @@
+#pragma once
+// The `curvemesh` subcommands. Each registers its options on the CLI11 app and returns the
+// function that runs it; exit codes follow the design: 0 ok, 1 invalid input, 2 usage, 3 bug.
+#include <functional>
+
+namespace CLI {
+class App;
+}
+
+namespace curvemesh::app {
+
+enum ExitCode : int { kOk = 0, kInvalidInput = 1, kUsage = 2, kInternal = 3 };
+
+using Runner = std::function<int()>;
+
+Runner add_features_command(CLI::App& app);
+
+}  // namespace curvemesh::app

@@ -1,0 +1,33 @@
+// curvemesh: curved triangle meshes from real-world vector drawings.
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+#include <map>
+#include <string>
+
+#include "app/commands.hpp"
+
+int main(int argc, char** argv) {
+  using namespace curvemesh::app;
+  CLI::App app{"curvemesh: coarse, curved, analysis-ready triangle meshes from SVG drawings"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "curvemesh 0.1.0");
+
+  std::map<const CLI::App*, Runner> runners;
+  auto add = [&](Runner r) { runners[app.get_subcommands({}).back()] = std::move(r); };
+  add(add_features_command(app));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kOk : kUsage;
+  }
+  try {
+    for (const CLI::App* sub : app.get_subcommands()) return runners.at(sub)();
+  } catch (const std::exception& e) {
+    std::cerr << "curvemesh: internal error (this is a bug): " << e.what() << "\n";
+    return kInternal;
+  }
+  return kUsage;
+}

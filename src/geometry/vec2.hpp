@@ -1,0 +1,32 @@
+#pragma once
+// Plane vectors and axis-aligned boxes: the smallest types every stage shares.
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace curvemesh::geometry {
+
+using Vec2 = Eigen::Vector2d;
+
+// An axis-aligned box; empty until the first point is added.
+struct Box2 {
+  Vec2 min{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  Vec2 max{-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+
+  bool empty() const { return !(min.x() <= max.x() && min.y() <= max.y()); }
+  void add(const Vec2& p) {
+    min = min.cwiseMin(p);
+    max = max.cwiseMax(p);
+  }
+  void add(const Box2& b) {
+    if (b.empty()) return;
+    add(b.min);
+    add(b.max);
+  }
+  double diagonal() const { return empty() ? 0.0 : (max - min).norm(); }
+  double width() const { return empty() ? 0.0 : max.x() - min.x(); }
+  double height() const { return empty() ? 0.0 : max.y() - min.y(); }
+};
+
+}  // namespace curvemesh::geometry

@@ -1,0 +1,79 @@
+#include "io/svg_writer.hpp"
+
+#include <algorithm>
+#include <charconv>
+
+namespace curvemesh::io {
+
+SvgWriter::SvgWriter(const geometry::Box2& extent) {
+  geometry::Box2 box = extent;
+  if (box.empty()) box.add(geometry::Vec2(0, 0)), box.add(geometry::Vec2(1, 1));
+  double margin = 0.02 * box.diagonal();
+  if (!(margin > 0)) margin = 1.0;
+  dot_radius_ = 0.003 * (box.diagonal() + margin);
+  out_ = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"";
+  number(box.min.x() - margin);
+  out_ += ' ';
+  number(box.min.y() - margin);
+  out_ += ' ';
+  number(box.width() + 2 * margin);
+  out_ += ' ';
+  number(box.height() + 2 * margin);
+  out_ += "\" width=\"1000\" height=\"";
+  const double aspect = (box.height() + 2 * margin) / (box.width() + 2 * margin);
+  number(std::max(1.0, std::min(100000.0, 1000.0 * aspect)));
+  out_ += "\">\n<g fill=\"none\" stroke-width=\"1\" vector-effect=\"non-scaling-stroke\">\n";
+}
+
+void SvgWriter::number(double v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  out_.append(buf, r.ptr);
+}
+
+void SvgWriter::cubic(const geometry::CubicBezier& c, std::string_view colour) {
+  out_ += "<path vector-effect=\"non-scaling-stroke\" stroke=\"";
+  out_ += colour;
+  out_ += "\" d=\"M";
+  for (int i = 0; i < 4; ++i) {
+    if (i == 1) out_ += " C";
+    out_ += ' ';
+    number(c.p[i].x());
+    out_ += ' ';
+    number(c.p[i].y());
+  }
+  out_ += "\"/>\n";
+}
+
+void SvgWriter::segment(const geometry::Vec2& a, const geometry::Vec2& b, std::string_view colour) {
+  out_ += "<path vector-effect=\"non-scaling-stroke\" stroke=\"";
+  out_ += colour;
+  out_ += "\" d=\"M ";
+  number(a.x());
+  out_ += ' ';
+  number(a.y());
+  out_ += " L ";
+  number(b.x());
+  out_ += ' ';
+  number(b.y());
+  out_ += "\"/>\n";
+}
+
+void SvgWriter::dot(const geometry::Vec2& p, std::string_view colour) {
+  out_ += "<circle stroke=\"none\" fill=\"";
+  out_ += colour;
+  out_ += "\" cx=\"";
+  number(p.x());
+  out_ += "\" cy=\"";
+  number(p.y());
+  out_ += "\" r=\"";
+  number(dot_radius_);
+  out_ += "\"/>\n";
+}
+
+std::string SvgWriter::finish() {
+  out_ += "</g>\n</svg>\n";
+  return std::move(out_);
+}
+
+}  // namespace curvemesh::io

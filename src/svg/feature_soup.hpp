@@ -1,0 +1,60 @@
+#pragma once
+// The reader's output and the pipeline's input (paper §3.1): a soup of isolated points and cubic
+// Bézier curves in the root element's user space (viewBox units, y pointing down, as in SVG),
+// each with the colours and the element it came from.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "geometry/bezier.hpp"
+
+namespace curvemesh::svg {
+
+using geometry::Box2;
+using geometry::CubicBezier;
+using geometry::Vec2;
+
+// A resolved `fill` or `stroke`: no paint, a colour, or a reference to a paint server.
+struct Paint {
+  enum class Kind : std::uint8_t { none, color, url };
+  Kind kind = Kind::none;
+  std::uint8_t r = 0, g = 0, b = 0;
+  std::string url;  // the id for Kind::url, without '#'
+
+  static Paint rgb(std::uint8_t r, std::uint8_t g, std::uint8_t b) { return {Kind::color, r, g, b, {}}; }
+  // "#rrggbb", "none" or "url(#id)".
+  std::string to_string() const;
+  bool operator==(const Paint&) const = default;
+};
+
+// The drawn element a curve or point came from.
+struct SourceElement {
+  std::string tag;   // "path", "rect", ...
+  std::string id;    // the element's id attribute, empty if it has none
+  int index = 0;     // position of the element in document order (0-based, all elements counted)
+  int line = 0;      // 1-based line of the element in the file
+};
+
+struct SoupCurve {
+  CubicBezier bezier;
+  int source = -1;  // index into FeatureSoup::sources
+  Paint stroke;
+  Paint fill;
+};
+
+struct SoupPoint {
+  Vec2 p;
+  int source = -1;
+};
+
+struct FeatureSoup {
+  std::vector<SoupCurve> curves;
+  std::vector<SoupPoint> points;
+  std::vector<SourceElement> sources;
+  std::vector<std::string> warnings;
+
+  // Tight bounding box of every curve and point (empty for an empty soup).
+  Box2 bounds() const;
+};
+
+}  // namespace curvemesh::svg

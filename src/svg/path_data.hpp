@@ -1,0 +1,22 @@
+#pragma once
+// SVG path data (the `d` attribute) to cubic Béziers, in the element's own coordinates.
+// Every command M L H V C S Q T A Z, absolute and relative, with implicit repeats.
+#include <string_view>
+#include <vector>
+
+#include "svg/feature_soup.hpp"
+
+namespace curvemesh::svg {
+
+struct Subpath {
+  Vec2 start;                          // the moveto point
+  std::vector<CubicBezier> segments;   // lines, quadratics and arc pieces all as cubics
+  bool closed = false;                 // ended by Z (a closing segment was added if needed)
+};
+
+// Parses path data. Throws SyntaxError (with the offset into `d`) on an unknown command, a
+// missing or malformed number, or a number that overflows a double. Like browsers, an empty
+// string gives no subpaths; a moveto followed by nothing gives a subpath without segments.
+std::vector<Subpath> parse_path_data(std::string_view d);
+
+}  // namespace curvemesh::svg

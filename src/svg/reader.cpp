@@ -1,0 +1,646 @@
+#include "svg/reader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <pugixml.hpp>
+#include <sstream>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "svg/entities.hpp"
+#include "svg/error.hpp"
+#include "svg/numbers.hpp"
+#include "svg/paint.hpp"
+#include "svg/path_data.hpp"
+#include "svg/shapes.hpp"
+#include "svg/style.hpp"
+#include "svg/transform.hpp"
+
+namespace curvemesh::svg {
+
+namespace {
+
+constexpr std::string_view kSvgNamespace = "http://www.w3.org/2000/svg";
+constexpr std::string_view kXlinkNamespace = "http://www.w3.org/1999/xlink";
+
+// Inherited state while walking the tree.
+struct Context {
+  Affine ctm;                           // element coordinates -> root user space
+  Paint fill = Paint::rgb(0, 0, 0);     // SVG initial values
+  Paint stroke;
+  Paint color = Paint::rgb(0, 0, 0);
+  bool visible = true;
+  double viewport_width = 100, viewport_height = 100;  // for percentage lengths
+  int depth = 0;
+};
+
+// Which axis a length is measured along (for percentages, SVG 1.1 §7.10).
+enum class Axis { x, y, other };
+
+// Geometry collected before the degenerate-path pass (which needs the whole drawing's size).
+struct PendingSubpath {
+  std::vector<CubicBezier> segments;
+  Vec2 start;
+  int source;
+  Paint stroke, fill;
+};
+
+class Reader {
+ public:
+  Reader(std::string_view text, const ReadOptions& options) : text_(text), options_(options) {}
+
+  FeatureSoup read();
+
+ private:
+  // --- document structure ---
+  void parse_document();
+  void index_document(pugi::xml_node root);
+  std::string_view local_name(pugi::xml_node node) const;  // "" for elements of other namespaces
+  std::string attr(pugi::xml_node node, const char* name) const;
+  bool has_attr(pugi::xml_node node, const char* name) const { return !node.attribute(name).empty(); }
+  std::string href(pugi::xml_node node) const;
+  int line_of(pugi::xml_node node) const;
+  std::string where(pugi::xml_node node) const;
+  [[noreturn]] void fail(pugi::xml_node node, const std::string& message) const;
+
+  // --- walking ---
+  void walk(pugi::xml_node node, Context ctx);
+  void walk_children(pugi::xml_node node, const Context& ctx);
+  bool apply_style(pugi::xml_node node, std::string_view tag, Context& ctx);  // false: display:none
+  void apply_transform(pugi::xml_node node, Context& ctx);
+  void walk_use(pugi::xml_node node, Context ctx);
+  void walk_viewport(pugi::xml_node node, pugi::xml_node content, Context ctx, double x, double y, double width,
+                     double height);
+  bool switch_child_passes(pugi::xml_node child) const;
+
+  // --- geometry ---
+  double length(pugi::xml_node node, const char* name, Axis axis, const Context& ctx, double fallback) const;
+  void draw_shape(pugi::xml_node node, std::string_view tag, const Context& ctx);
+  void emit(pugi::xml_node node, std::string_view tag, const std::vector<Subpath>& subpaths, const Context& ctx);
+  int source_of(pugi::xml_node node, std::string_view tag);
+  void warn_once(const std::string& key, const std::string& message);
+
+  std::string_view text_;
+  const ReadOptions& options_;
+
+  pugi::xml_document doc_;
+  EntityTable entities_;
+  std::vector<std::size_t> line_starts_;
+  std::unordered_map<std::string, pugi::xml_node> ids_;
+  std::unordered_map<const void*, int> element_index_;
+  std::unordered_map<const void*, int> source_index_;
+  std::unordered_set<std::string> svg_prefixes_;  // namespace prefixes bound to SVG ("svg" usually)
+  bool default_namespace_is_svg_ = true;
+  StyleSheet stylesheet_;
+  std::vector<pugi::xml_node> use_stack_;
+  std::size_t instantiated_ = 0;
+  std::size_t curve_count_ = 0;
+  std::map<std::string, std::size_t> skipped_kinds_;
+  std::unordered_set<std::string> warned_;
+
+  std::vector<PendingSubpath> pending_;
+  FeatureSoup soup_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Document structure
+
+void Reader::parse_document() {
+  line_starts_.push_back(0);
+  for (std::size_t i = 0; i < text_.size(); ++i)
+    if (text_[i] == '\n') line_starts_.push_back(i + 1);
+
+  entities_ = EntityTable::from_document(text_, options_.max_entity_expansion);
+  for (const auto& name : entities_.external())
+    warn_once("external-entity:" + name, "external entity '" + name + "' is not loaded");
+
+  const pugi::xml_parse_result result =
+      doc_.load_buffer(text_.data(), text_.size(), pugi::parse_default, pugi::encoding_auto);
+  if (!result) {
+    const std::size_t offset = result.offset < 0 ? 0 : static_cast<std::size_t>(result.offset);
+    const auto it = std::upper_bound(line_starts_.begin(), line_starts_.end(), offset);
+    throw InputError(std::string("not well-formed XML: ") + result.description(),
+                     "line " + std::to_string(it - line_starts_.begin()));
+  }
+}
+
+std::string_view Reader::local_name(pugi::xml_node node) const {
+  const std::string_view name = node.name();
+  const auto colon = name.find(':');
+  if (colon == std::string_view::npos) return default_namespace_is_svg_ ? name : std::string_view{};
+  if (svg_prefixes_.count(std::string(name.substr(0, colon)))) return name.substr(colon + 1);
+  return {};
+}
+
+std::string Reader::attr(pugi::xml_node node, const char* name) const {
+  const char* value = node.attribute(name).value();
+  if (entities_.empty() || !std::strchr(value, '&')) return value;
+  try {
+    return entities_.expand(value);
+  } catch (const InputError& e) {
+    fail(node, e.message());
+  }
+}
+
+std::string Reader::href(pugi::xml_node node) const {
+  for (const pugi::xml_attribute a : node.attributes()) {
+    const std::string_view n = a.name();
+    if (n == "href" || (n.size() > 5 && n.substr(n.size() - 5) == ":href")) return attr(node, a.name());
+  }
+  return {};
+}
+
+int Reader::line_of(pugi::xml_node node) const {
+  const std::ptrdiff_t offset = node.offset_debug();
+  if (offset < 0) return 0;
+  const auto it = std::upper_bound(line_starts_.begin(), line_starts_.end(), static_cast<std::size_t>(offset));
+  return static_cast<int>(it - line_starts_.begin());
+}
+
+std::string Reader::where(pugi::xml_node node) const {
+  std::string w = "line " + std::to_string(line_of(node)) + ", <" + node.name();
+  if (const char* id = node.attribute("id").value(); *id) w += std::string(" id=\"") + id + "\"";
+  return w + ">";
+}
+
+void Reader::fail(pugi::xml_node node, const std::string& message) const { throw InputError(message, where(node)); }
+
+void Reader::warn_once(const std::string& key, const std::string& message) {
+  if (warned_.insert(key).second) soup_.warnings.push_back(message);
+}
+
+// One pass over the whole document (iterative, so any depth is safe here): ids, document order,
+// <style> sheets, namespace prefixes and the nesting depth.
+void Reader::index_document(pugi::xml_node root) {
+  for (const pugi::xml_attribute a : root.attributes()) {
+    const std::string_view n = a.name();
+    if (n == "xmlns") default_namespace_is_svg_ = std::string_view(a.value()) == kSvgNamespace || !*a.value();
+    if (n.substr(0, 6) == "xmlns:" && std::string_view(a.value()) == kSvgNamespace)
+      svg_prefixes_.insert(std::string(n.substr(6)));
+  }
+  // A prefixed root (<svg:svg xmlns:svg="...">) is SVG even when the default namespace is not.
+  int index = 0;
+  std::vector<std::pair<pugi::xml_node, int>> stack{{root, 1}};
+  while (!stack.empty()) {
+    const auto [node, depth] = stack.back();
+    stack.pop_back();
+    if (depth > options_.max_depth)
+      fail(node, "elements nested deeper than " + std::to_string(options_.max_depth) + " levels");
+    element_index_[node.internal_object()] = index++;
+    if (const char* id = node.attribute("id").value(); *id) ids_.emplace(id, node);  // first id wins
+    if (local_name(node) == "style") {
+      std::string css;
+      for (const pugi::xml_node child : node.children())
+        if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) css += child.value();
+      if (!entities_.empty()) css = entities_.expand(css);
+      stylesheet_.add(css);
+    }
+    // Push children in reverse so they are visited in document order.
+    std::vector<pugi::xml_node> children;
+    for (const pugi::xml_node child : node.children(/*any*/))
+      if (child.type() == pugi::node_element) children.push_back(child);
+    for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back({*it, depth + 1});
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Styles and transforms
+
+bool Reader::apply_style(pugi::xml_node node, std::string_view tag, Context& ctx) {
+  // Cascade, lowest precedence first: presentation attributes, style sheet, style attribute.
+  static constexpr const char* kProperties[] = {"fill", "stroke", "color", "display", "visibility"};
+  Declarations decls;
+  for (const char* p : kProperties)
+    if (has_attr(node, p)) decls.emplace_back(p, attr(node, p));
+  if (!stylesheet_.empty()) stylesheet_.match(tag, node.attribute("id").value(), attr(node, "class"), decls);
+  if (has_attr(node, "style")) {
+    const Declarations inline_decls = parse_declarations(attr(node, "style"));
+    decls.insert(decls.end(), inline_decls.begin(), inline_decls.end());
+  }
+  if (decls.empty()) return true;
+
+  auto trimmed = [](const std::string& v) {
+    std::string_view s(v);
+    while (!s.empty() && is_svg_whitespace(s.front())) s.remove_prefix(1);
+    while (!s.empty() && is_svg_whitespace(s.back())) s.remove_suffix(1);
+    return std::string(s);
+  };
+  // `color` first: currentColor in fill/stroke refers to this element's computed colour.
+  for (const auto& [name, value] : decls)
+    if (name == "color")
+      if (auto c = parse_color(value)) ctx.color = *c;
+  for (const auto& [name, value] : decls) {
+    if (name == "fill") {
+      if (auto p = parse_paint(value, ctx.color)) ctx.fill = *p;
+    } else if (name == "stroke") {
+      if (auto p = parse_paint(value, ctx.color)) ctx.stroke = *p;
+    } else if (name == "display") {
+      if (trimmed(value) == "none") return false;
+    } else if (name == "visibility") {
+      const std::string v = trimmed(value);
+      if (v == "hidden" || v == "collapse") ctx.visible = false;
+      if (v == "visible") ctx.visible = true;
+    }
+  }
+  return true;
+}
+
+void Reader::apply_transform(pugi::xml_node node, Context& ctx) {
+  if (!has_attr(node, "transform")) return;
+  try {
+    ctx.ctm = ctx.ctm * parse_transform(attr(node, "transform"));
+  } catch (const SyntaxError& e) {
+    fail(node, std::string("bad transform: ") + e.what() + " at offset " + std::to_string(e.offset()));
+  }
+  if (!ctx.ctm.is_finite()) fail(node, "transforms overflow a double");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lengths
+
+double Reader::length(pugi::xml_node node, const char* name, Axis axis, const Context& ctx,
+                      double fallback) const {
+  if (!has_attr(node, name)) return fallback;
+  const std::string value = attr(node, name);
+  std::string_view unit;
+  std::optional<double> number;
+  try {
+    number = parse_number_with_unit(value, &unit);
+  } catch (const SyntaxError& e) {
+    fail(node, std::string("attribute ") + name + ": " + e.what());
+  }
+  if (!number) {
+    // "NaN" and "Infinity" are refused: no finite geometry can stand for them.
+    std::string lower(value);
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (lower.find("nan") != std::string::npos || lower.find("inf") != std::string::npos)
+      fail(node, std::string("attribute ") + name + "=\"" + value + "\" is not a finite number");
+    return fallback;  // an invalid length is ignored, as browsers do
+  }
+  double scale = 1.0;
+  if (unit.empty() || unit == "px") {
+    scale = 1.0;
+  } else if (unit == "%") {
+    const double w = ctx.viewport_width, h = ctx.viewport_height;
+    scale = (axis == Axis::x ? w : axis == Axis::y ? h : std::sqrt((w * w + h * h) / 2.0)) / 100.0;
+  } else if (unit == "pt") {
+    scale = 96.0 / 72.0;
+  } else if (unit == "pc") {
+    scale = 16.0;
+  } else if (unit == "mm") {
+    scale = 96.0 / 25.4;
+  } else if (unit == "cm") {
+    scale = 96.0 / 2.54;
+  } else if (unit == "in") {
+    scale = 96.0;
+  } else if (unit == "em") {
+    scale = 16.0;  // the CSS default font size: drawings rarely set another on shapes
+  } else if (unit == "ex") {
+    scale = 8.0;
+  } else {
+    return fallback;
+  }
+  const double result = *number * scale;
+  if (!std::isfinite(result)) fail(node, std::string("attribute ") + name + " overflows a double");
+  return result;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Walking the tree
+
+void Reader::walk_children(pugi::xml_node node, const Context& ctx) {
+  for (const pugi::xml_node child : node.children())
+    if (child.type() == pugi::node_element) walk(child, ctx);
+}
+
+bool Reader::switch_child_passes(pugi::xml_node child) const {
+  // SVG 1.1 §5.8.2: conditional processing. We support no extensions; SVG 2 dropped features.
+  if (has_attr(child, "requiredExtensions")) return false;
+  if (has_attr(child, "systemLanguage")) {
+    const std::string langs = attr(child, "systemLanguage");
+    return langs.find("en") != std::string::npos;
+  }
+  return true;
+}
+
+void Reader::walk(pugi::xml_node node, Context ctx) {
+  const std::string_view tag = local_name(node);
+  if (tag.empty()) return;  // elements of other namespaces (sodipodi:, inkscape:, ...) draw nothing
+  if (++ctx.depth > options_.max_depth)
+    fail(node, "elements nested deeper than " + std::to_string(options_.max_depth) + " levels (through <use>)");
+  if (++instantiated_ > options_.max_elements)
+    fail(node, "the document expands to more than " + std::to_string(options_.max_elements) +
+                   " elements through <use>");
+  if (!apply_style(node, tag, ctx)) return;
+
+  if (tag == "g" || tag == "a") {
+    apply_transform(node, ctx);
+    walk_children(node, ctx);
+  } else if (tag == "switch") {
+    apply_transform(node, ctx);
+    for (const pugi::xml_node child : node.children()) {
+      if (child.type() != pugi::node_element || local_name(child).empty() || !switch_child_passes(child)) continue;
+      walk(child, ctx);
+      break;
+    }
+  } else if (tag == "svg") {
+    // A nested viewport (the root is handled in read()).
+    const double x = length(node, "x", Axis::x, ctx, 0), y = length(node, "y", Axis::y, ctx, 0);
+    const double w = length(node, "width", Axis::x, ctx, ctx.viewport_width);
+    const double h = length(node, "height", Axis::y, ctx, ctx.viewport_height);
+    apply_transform(node, ctx);
+    walk_viewport(node, node, ctx, x, y, w, h);
+  } else if (tag == "use") {
+    walk_use(node, ctx);
+  } else if (tag == "path" || tag == "rect" || tag == "circle" || tag == "ellipse" || tag == "line" ||
+             tag == "polyline" || tag == "polygon") {
+    if (!ctx.visible) return;
+    apply_transform(node, ctx);
+    draw_shape(node, tag, ctx);
+  } else if (tag == "text" || tag == "image" || tag == "foreignObject") {
+    ++skipped_kinds_[std::string(tag)];
+  }
+  // Everything else draws nothing by itself: defs, symbol, clipPath, mask, pattern, marker,
+  // gradients, filters, style, metadata, title, desc, ... (SVG 1.1 §5.3: never rendered directly).
+}
+
+void Reader::walk_viewport(pugi::xml_node node, pugi::xml_node content, Context ctx, double x, double y,
+                           double width, double height) {
+  if (!(width > 0 && height > 0)) return;  // SVG 1.1 §5.1.2: a zero-sized viewport disables rendering
+  ViewBox vb;
+  bool has_view_box = false;
+  if (has_attr(node, "viewBox")) {
+    NumberScanner in(attr(node, "viewBox"));
+    try {
+      vb.x = in.number();
+      in.skip_separator();
+      vb.y = in.number();
+      in.skip_separator();
+      vb.width = in.number();
+      in.skip_separator();
+      vb.height = in.number();
+      has_view_box = true;
+    } catch (const SyntaxError& e) {
+      warn_once("viewBox", "ignored a malformed viewBox (" + std::string(e.what()) + ")");
+    }
+    if (has_view_box && (vb.width < 0 || vb.height < 0)) has_view_box = false;
+    if (has_view_box && (vb.width == 0 || vb.height == 0)) return;  // rendering disabled
+  }
+  if (has_view_box) {
+    ctx.ctm = ctx.ctm * viewbox_transform(vb, attr(node, "preserveAspectRatio"), x, y, width, height);
+    ctx.viewport_width = vb.width;
+    ctx.viewport_height = vb.height;
+  } else {
+    ctx.ctm = ctx.ctm * Affine::translate(x, y);
+    ctx.viewport_width = width;
+    ctx.viewport_height = height;
+  }
+  if (!ctx.ctm.is_finite()) fail(node, "viewport transform overflows a double");
+  walk_children(content, ctx);
+}
+
+void Reader::walk_use(pugi::xml_node node, Context ctx) {
+  const std::string ref = href(node);
+  if (ref.empty()) return;
+  if (ref[0] != '#') {
+    warn_once("external-use", "<use> of another file ('" + ref + "') is not followed");
+    return;
+  }
+  const auto it = ids_.find(ref.substr(1));
+  if (it == ids_.end()) {
+    warn_once("missing-use:" + ref, "<use> refers to a missing element '" + ref + "'");
+    return;
+  }
+  const pugi::xml_node target = it->second;
+  // A reference to an element that is being instantiated, or to an ancestor of this <use>,
+  // would expand forever (SVG 1.1 §5.6: such references are an error).
+  if (std::find(use_stack_.begin(), use_stack_.end(), target) != use_stack_.end())
+    fail(node, "<use> cycle through '" + ref + "'");
+  for (pugi::xml_node p = node; p; p = p.parent())
+    if (p == target) fail(node, "<use> refers to its own ancestor '" + ref + "'");
+
+  apply_transform(node, ctx);
+  const double x = length(node, "x", Axis::x, ctx, 0), y = length(node, "y", Axis::y, ctx, 0);
+  use_stack_.push_back(target);
+  const std::string_view target_tag = local_name(target);
+  if (target_tag == "symbol" || target_tag == "svg") {
+    // The <use> width/height override the referenced viewport's (SVG 1.1 §5.6).
+    const double w = has_attr(node, "width") ? length(node, "width", Axis::x, ctx, 0)
+                                              : length(target, "width", Axis::x, ctx, ctx.viewport_width);
+    const double h = has_attr(node, "height") ? length(node, "height", Axis::y, ctx, 0)
+                                               : length(target, "height", Axis::y, ctx, ctx.viewport_height);
+    Context inner = ctx;
+    if (!apply_style(target, target_tag, inner)) {
+      use_stack_.pop_back();
+      return;
+    }
+    if (target_tag == "svg") {
+      inner.ctm = inner.ctm * Affine::translate(x, y);
+      apply_transform(target, inner);
+      walk_viewport(target, target, inner, length(target, "x", Axis::x, ctx, 0),
+                    length(target, "y", Axis::y, ctx, 0), w, h);
+    } else {
+      apply_transform(target, inner);
+      walk_viewport(target, target, inner, x, y, w, h);
+    }
+  } else {
+    ctx.ctm = ctx.ctm * Affine::translate(x, y);
+    walk(target, ctx);
+  }
+  use_stack_.pop_back();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Geometry
+
+int Reader::source_of(pugi::xml_node node, std::string_view tag) {
+  const auto [it, inserted] = source_index_.emplace(node.internal_object(), static_cast<int>(soup_.sources.size()));
+  if (inserted) {
+    SourceElement s;
+    s.tag = std::string(tag);
+    s.id = node.attribute("id").value();
+    s.index = element_index_.count(node.internal_object()) ? element_index_.at(node.internal_object()) : -1;
+    s.line = line_of(node);
+    soup_.sources.push_back(std::move(s));
+  }
+  return it->second;
+}
+
+void Reader::draw_shape(pugi::xml_node node, std::string_view tag, const Context& ctx) {
+  std::vector<Subpath> subpaths;
+  if (tag == "path") {
+    try {
+      subpaths = parse_path_data(attr(node, "d"));
+    } catch (const SyntaxError& e) {
+      fail(node, std::string("bad path data: ") + e.what() + " at offset " + std::to_string(e.offset()));
+    }
+  } else if (tag == "rect") {
+    const double w = length(node, "width", Axis::x, ctx, 0), h = length(node, "height", Axis::y, ctx, 0);
+    double rx = length(node, "rx", Axis::x, ctx, -1), ry = length(node, "ry", Axis::y, ctx, -1);
+    if (rx < 0 && ry < 0) rx = ry = 0;
+    if (rx < 0) rx = ry;  // SVG 1.1 §9.2: a missing radius takes the other's value
+    if (ry < 0) ry = rx;
+    subpaths = rect_subpaths(length(node, "x", Axis::x, ctx, 0), length(node, "y", Axis::y, ctx, 0), w, h, rx, ry);
+  } else if (tag == "circle") {
+    const double r = length(node, "r", Axis::other, ctx, 0);
+    subpaths = ellipse_subpaths(length(node, "cx", Axis::x, ctx, 0), length(node, "cy", Axis::y, ctx, 0), r, r);
+  } else if (tag == "ellipse") {
+    double rx = length(node, "rx", Axis::x, ctx, -1), ry = length(node, "ry", Axis::y, ctx, -1);
+    if (rx < 0) rx = ry;  // SVG 2: "auto" (or missing) takes the other radius
+    if (ry < 0) ry = rx;
+    subpaths =
+        ellipse_subpaths(length(node, "cx", Axis::x, ctx, 0), length(node, "cy", Axis::y, ctx, 0), rx, ry);
+  } else if (tag == "line") {
+    const Vec2 a(length(node, "x1", Axis::x, ctx, 0), length(node, "y1", Axis::y, ctx, 0));
+    const Vec2 b(length(node, "x2", Axis::x, ctx, 0), length(node, "y2", Axis::y, ctx, 0));
+    subpaths.push_back({a, {CubicBezier::line(a, b)}, false});
+  } else {  // polyline, polygon
+    try {
+      bool odd = false;
+      subpaths = polyline_subpaths(attr(node, "points"), tag == "polygon", &odd);
+      if (odd) warn_once("odd-points", "a points list with an odd number of coordinates: the last was dropped");
+    } catch (const SyntaxError& e) {
+      fail(node, std::string("bad points: ") + e.what() + " at offset " + std::to_string(e.offset()));
+    }
+  }
+  emit(node, tag, subpaths, ctx);
+}
+
+void Reader::emit(pugi::xml_node node, std::string_view tag, const std::vector<Subpath>& subpaths,
+                  const Context& ctx) {
+  if (subpaths.empty()) return;
+  const int source = source_of(node, tag);
+  for (const Subpath& sp : subpaths) {
+    PendingSubpath out;
+    out.start = ctx.ctm.apply(sp.start);
+    out.source = source;
+    out.stroke = ctx.stroke;
+    out.fill = ctx.fill;
+    out.segments.reserve(sp.segments.size());
+    for (const CubicBezier& c : sp.segments) {
+      // An affine map of a Bézier curve is the Bézier curve of the mapped control points.
+      CubicBezier m(ctx.ctm.apply(c.p[0]), ctx.ctm.apply(c.p[1]), ctx.ctm.apply(c.p[2]), ctx.ctm.apply(c.p[3]));
+      for (const Vec2& q : m.p)
+        if (!std::isfinite(q.x()) || !std::isfinite(q.y())) fail(node, "coordinates overflow a double");
+      out.segments.push_back(m);
+    }
+    if (!std::isfinite(out.start.x()) || !std::isfinite(out.start.y())) fail(node, "coordinates overflow a double");
+    curve_count_ += out.segments.size();
+    if (curve_count_ > options_.max_curves)
+      fail(node, "the document has more than " + std::to_string(options_.max_curves) + " curves");
+    pending_.push_back(std::move(out));
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+FeatureSoup Reader::read() {
+  parse_document();
+  const pugi::xml_node root = doc_.document_element();
+  if (!root) throw InputError("no root element");
+  const std::string_view root_name = root.name();
+  const auto colon = root_name.find(':');
+  const std::string_view root_local = colon == std::string_view::npos ? root_name : root_name.substr(colon + 1);
+  if (root_local != "svg")
+    throw InputError("the root element is <" + std::string(root_name) + ">, not <svg>", where(root));
+  if (colon != std::string_view::npos) svg_prefixes_.insert(std::string(root_name.substr(0, colon)));
+  index_document(root);
+
+  // The root's user space is our coordinate system: its viewBox (if any) only sets the size that
+  // percentages refer to; its width/height scale nothing.
+  Context ctx;
+  if (!apply_style(root, "svg", ctx)) {
+    warn_once("root-hidden", "the root element has display:none: nothing is drawn");
+  } else {
+    bool sized = false;
+    if (has_attr(root, "viewBox")) {
+      NumberScanner in(attr(root, "viewBox"));
+      try {
+        in.number();
+        in.skip_separator();
+        in.number();
+        in.skip_separator();
+        const double w = in.number();
+        in.skip_separator();
+        const double h = in.number();
+        if (w > 0 && h > 0) ctx.viewport_width = w, ctx.viewport_height = h, sized = true;
+      } catch (const SyntaxError&) {
+        warn_once("viewBox", "ignored the root's malformed viewBox");
+      }
+    }
+    if (!sized) {
+      ctx.viewport_width = length(root, "width", Axis::x, ctx, 100);
+      ctx.viewport_height = length(root, "height", Axis::y, ctx, 100);
+      if (!(ctx.viewport_width > 0)) ctx.viewport_width = 100;
+      if (!(ctx.viewport_height > 0)) ctx.viewport_height = 100;
+    }
+    ctx.depth = 1;
+    walk_children(root, ctx);
+  }
+
+  for (const auto& [kind, count] : skipped_kinds_)
+    soup_.warnings.push_back("skipped " + std::to_string(count) + " <" + kind + "> element" +
+                             (count == 1 ? "" : "s") + ": not converted to curves");
+
+  // Paths too small to draw at any mesh resolution become isolated points (paper §4).
+  Box2 extent;
+  for (const PendingSubpath& sp : pending_) {
+    extent.add(sp.start);
+    for (const CubicBezier& c : sp.segments) extent.add(c.control_bounds());
+  }
+  const double tolerance = options_.degenerate_tolerance_rel * extent.diagonal();
+  soup_.curves.reserve(curve_count_);
+  for (PendingSubpath& sp : pending_) {
+    Vec2 sum = sp.start;
+    std::size_t n = 1;
+    for (const CubicBezier& c : sp.segments)
+      for (const Vec2& q : c.p) sum += q, ++n;
+    const Vec2 centre = sum / double(n);
+    bool degenerate = (sp.start - centre).norm() <= tolerance;
+    for (const CubicBezier& c : sp.segments)
+      for (const Vec2& q : c.p) degenerate = degenerate && (q - centre).norm() <= tolerance;
+    if (degenerate) {
+      soup_.points.push_back({centre, sp.source});
+      continue;
+    }
+    for (const CubicBezier& c : sp.segments) soup_.curves.push_back({c, sp.source, sp.stroke, sp.fill});
+  }
+  pending_.clear();
+  return std::move(soup_);
+}
+
+}  // namespace
+
+Box2 FeatureSoup::bounds() const {
+  Box2 b;
+  for (const SoupCurve& c : curves) b.add(c.bezier.bounds());
+  for (const SoupPoint& p : points) b.add(p.p);
+  return b;
+}
+
+FeatureSoup read_svg(std::string_view text, const ReadOptions& options, const std::string& filename) {
+  try {
+    return Reader(text, options).read();
+  } catch (const InputError& e) {
+    // Prefix the file name once, here, so every message names it.
+    throw InputError(e.message(), e.where().empty() ? filename : filename + ": " + e.where());
+  }
+}
+
+FeatureSoup read_svg_file(const std::string& path, const ReadOptions& options) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError("is a directory, not a file", path);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot open the file", path);
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad()) throw InputError("cannot read the file", path);
+  return read_svg(buffer.str(), options, path);
+}
+
+}  // namespace curvemesh::svg

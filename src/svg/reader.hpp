@@ -1,0 +1,34 @@
+#pragma once
+// SVG document -> FeatureSoup. Coordinates are in the root element's user space: viewBox units
+// when the root has a viewBox, otherwise the root's CSS pixels; every transform, nested <svg>
+// viewport and <use> offset has been applied. The root's width/height do not scale anything.
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+#include "svg/feature_soup.hpp"
+
+namespace curvemesh::svg {
+
+struct ReadOptions {
+  // Paths whose control points all lie within this distance, relative to the drawing's
+  // bounding-box diagonal, become isolated points (paper §4: ε_m).
+  double degenerate_tolerance_rel = 1e-8;
+  // Refuse documents nested deeper than this (elements inside elements, <use> included).
+  int max_depth = 512;
+  // Refuse documents that expand (through <use>) to more curves or elements than this: a small
+  // file can otherwise describe an exponentially large drawing.
+  std::size_t max_curves = 20'000'000;
+  std::size_t max_elements = 5'000'000;
+  // Refuse documents whose entity references expand to more characters than this.
+  std::size_t max_entity_expansion = 1u << 24;
+};
+
+// Reads SVG text. `filename` is only used in messages. Throws InputError when the document is
+// refused (message names the line and element where it can).
+FeatureSoup read_svg(std::string_view text, const ReadOptions& options = {}, const std::string& filename = "<input>");
+
+// Reads an SVG file; throws InputError when it cannot be opened or is refused.
+FeatureSoup read_svg_file(const std::string& path, const ReadOptions& options = {});
+
+}  // namespace curvemesh::svg

@@ -1,0 +1,22 @@
+#pragma once
+// The basic shapes of SVG 1.1 §9 as subpaths of cubic Béziers, in the element's coordinates.
+#include <string_view>
+#include <vector>
+
+#include "svg/path_data.hpp"
+
+namespace curvemesh::svg {
+
+// 4/3·(√2 − 1): the control arm of the usual quarter-circle cubic (the one Illustrator uses,
+// paper §3.1). Its radial error is at most 2.8e-4 of the radius.
+inline constexpr double kQuarterArcKappa = 0.55228474983079339840;
+
+// A rectangle with corner radii (already defaulted per §9.2); nothing when width or height ≤ 0.
+std::vector<Subpath> rect_subpaths(double x, double y, double width, double height, double rx, double ry);
+// An ellipse as four quarter cubics starting at (cx + rx, cy); nothing when a radius ≤ 0.
+std::vector<Subpath> ellipse_subpaths(double cx, double cy, double rx, double ry);
+// A points list; a trailing odd coordinate is dropped and reported through `odd_count`.
+// Throws SyntaxError on a malformed number.
+std::vector<Subpath> polyline_subpaths(std::string_view points, bool closed, bool* odd_count);
+
+}  // namespace curvemesh::svg
