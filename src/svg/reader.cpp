@@ -179,8 +179,12 @@ void Reader::warn_once(const std::string& key, const std::string& message) {
 void Reader::index_document(pugi::xml_node root) {
   for (const pugi::xml_attribute a : root.attributes()) {
     const std::string_view n = a.name();
-    if (n == "xmlns") default_namespace_is_svg_ = std::string_view(a.value()) == kSvgNamespace || !*a.value();
-    if (n.substr(0, 6) == "xmlns:" && std::string_view(a.value()) == kSvgNamespace)
+    // Illustrator writes xmlns="&ns_svg;": the value counts after entity expansion.
+    if (n == "xmlns") {
+      const std::string uri = attr(root, a.name());
+      default_namespace_is_svg_ = uri == kSvgNamespace || uri.empty();
+    }
+    if (n.substr(0, 6) == "xmlns:" && attr(root, a.name()) == kSvgNamespace)
       svg_prefixes_.insert(std::string(n.substr(6)));
   }
   // A prefixed root (<svg:svg xmlns:svg="...">) is SVG even when the default namespace is not.
