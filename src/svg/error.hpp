@@ -22,12 +22,16 @@ class InputError : public std::runtime_error {
 // characters into the value. The reader turns it into an InputError naming the element.
 class SyntaxError : public std::runtime_error {
  public:
-  SyntaxError(const std::string& message, std::size_t offset)
-      : std::runtime_error(message), offset_(offset) {}
+  // `non_finite`: the text holds a number that no double stands for (NaN, infinity, overflow),
+  // as opposed to text that is merely malformed.
+  SyntaxError(const std::string& message, std::size_t offset, bool non_finite = false)
+      : std::runtime_error(message), offset_(offset), non_finite_(non_finite) {}
   std::size_t offset() const { return offset_; }
+  bool non_finite() const { return non_finite_; }
 
  private:
   std::size_t offset_;
+  bool non_finite_;
 };
 
 }  // namespace curvemesh::svg

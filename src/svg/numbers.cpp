@@ -1,5 +1,6 @@
 #include "svg/numbers.hpp"
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <string>
@@ -34,6 +35,18 @@ bool NumberScanner::number_follows() {
 
 namespace {
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
+// "nan", "inf", "infinity" in any case, with an optional sign: not SVG numbers, but worth naming.
+bool names_non_finite(std::string_view s) {
+  if (!s.empty() && (s[0] == '+' || s[0] == '-')) s.remove_prefix(1);
+  auto starts = [&](std::string_view word) {
+    if (s.size() < word.size()) return false;
+    for (std::size_t i = 0; i < word.size(); ++i)
+      if (std::tolower(static_cast<unsigned char>(s[i])) != word[i]) return false;
+    return true;
+  };
+  return starts("nan") || starts("inf");
+}
+
 
 // Length of the number token starting at s[0], or 0 if none.
 std::size_t scan_number(std::string_view s) {
@@ -74,7 +87,7 @@ double convert(std::string_view token, std::size_t offset) {
     const auto e = t.find_first_of("eE");
     const bool negative_exponent = e != std::string_view::npos && e + 1 < t.size() && t[e + 1] == '-';
     if (negative_exponent) return 0.0;
-    throw SyntaxError("number '" + std::string(token) + "' is too large for a double", offset);
+    throw SyntaxError("number '" + std::string(token) + "' is too large for a double", offset, true);
   }
   if (ec != std::errc() || ptr != t.data() + t.size() || !std::isfinite(value))
     throw SyntaxError("bad number '" + std::string(token) + "'", offset);
@@ -91,8 +104,10 @@ std::optional<double> NumberScanner::try_number() {
   return v;
 }
 
+
 double NumberScanner::number() {
   if (auto v = try_number()) return *v;
+  if (names_non_finite(s_.substr(pos_))) throw SyntaxError("not a finite number", pos_, true);
   if (at_end()) throw SyntaxError("expected a number, found the end", pos_);
   throw SyntaxError(std::string("expected a number, found '") + s_[pos_] + "'", pos_);
 }
@@ -109,7 +124,10 @@ std::optional<double> parse_number_with_unit(std::string_view text, std::string_
   while (e > b && is_svg_whitespace(text[e - 1])) --e;
   text = text.substr(b, e - b);
   const std::size_t n = scan_number(text);
-  if (n == 0) return std::nullopt;
+  if (n == 0) {
+    if (names_non_finite(text)) throw SyntaxError("not a finite number", 0, true);
+    return std::nullopt;
+  }
   const double v = convert(text.substr(0, n), 0);  // overflow throws: no finite value stands for it
   if (unit) *unit = text.substr(n);
   return v;

@@ -40,7 +40,8 @@ class NumberScanner {
 bool is_svg_whitespace(char c);
 
 // Parses a whole attribute as one number with an optional unit suffix left in `unit`.
-// Returns nothing when the text is not a number; throws SyntaxError when it overflows a double.
+// Returns nothing when the text is not a number; throws SyntaxError (non_finite) when it is NaN,
+// infinite or overflows a double.
 std::optional<double> parse_number_with_unit(std::string_view text, std::string_view* unit);
 
 }  // namespace curvemesh::svg

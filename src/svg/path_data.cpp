@@ -24,6 +24,14 @@ class PathParser {
  public:
   explicit PathParser(std::string_view d) : in_(d) {}
 
+  // After a failed parse: whether the data ran out (rather than holding something malformed),
+  // and what was complete before that.
+  bool at_end() {
+    in_.skip_whitespace();
+    return in_.at_end();
+  }
+  std::vector<Subpath> take_result() { return std::move(out_); }
+
   std::vector<Subpath> parse() {
     in_.skip_whitespace();
     if (in_.at_end()) return {};
@@ -170,6 +178,17 @@ class PathParser {
 
 }  // namespace
 
-std::vector<Subpath> parse_path_data(std::string_view d) { return PathParser(d).parse(); }
+std::vector<Subpath> parse_path_data(std::string_view d, bool* truncated) {
+  PathParser parser(d);
+  if (truncated) *truncated = false;
+  try {
+    return parser.parse();
+  } catch (const SyntaxError&) {
+    // Only the end of the data inside a command's arguments is drawn up to (see the header).
+    if (!truncated || !parser.at_end()) throw;
+    *truncated = true;
+    return parser.take_result();
+  }
+}
 
 }  // namespace curvemesh::svg

@@ -15,8 +15,12 @@ struct Subpath {
 };
 
 // Parses path data. Throws SyntaxError (with the offset into `d`) on an unknown command, a
-// missing or malformed number, or a number that overflows a double. Like browsers, an empty
-// string gives no subpaths; a moveto followed by nothing gives a subpath without segments.
-std::vector<Subpath> parse_path_data(std::string_view d);
+// malformed number, or a number that overflows a double. Like browsers, an empty string gives no
+// subpaths; a moveto followed by nothing gives a subpath without segments.
+//
+// Data that simply ends in the middle of a command's arguments ("M 0 0 L 5") is what some
+// editors write; browsers draw it up to the incomplete command (SVG 2 §9.5.4). With `truncated`
+// given, so do we and set *truncated; without it, that is a SyntaxError too.
+std::vector<Subpath> parse_path_data(std::string_view d, bool* truncated = nullptr);
 
 }  // namespace curvemesh::svg

@@ -77,6 +77,8 @@ class Reader {
   void walk_viewport(pugi::xml_node node, pugi::xml_node content, Context ctx, double x, double y, double width,
                      double height);
   bool switch_child_passes(pugi::xml_node child) const;
+  // The element's viewBox; nothing (and a warning) when it is missing or malformed.
+  std::optional<ViewBox> view_box_of(pugi::xml_node node);
 
   // --- geometry ---
   double length(pugi::xml_node node, const char* name, Axis axis, const Context& ctx, double fallback) const;
@@ -256,10 +258,14 @@ bool Reader::apply_style(pugi::xml_node node, std::string_view tag, Context& ctx
 
 void Reader::apply_transform(pugi::xml_node node, Context& ctx) {
   if (!has_attr(node, "transform")) return;
+  const std::string text = attr(node, "transform");
   try {
-    ctx.ctm = ctx.ctm * parse_transform(attr(node, "transform"));
+    ctx.ctm = ctx.ctm * parse_transform(text);
   } catch (const SyntaxError& e) {
-    fail(node, std::string("bad transform: ") + e.what() + " at offset " + std::to_string(e.offset()));
+    // Browsers ignore a malformed transform attribute (CSS: an invalid value is dropped), but a
+    // number that is not finite has no drawing to fall back to.
+    if (e.non_finite()) fail(node, std::string("bad transform: ") + e.what() + " at offset " + std::to_string(e.offset()));
+    warn_once("bad-transform:" + where(node), where(node) + ": ignored a malformed transform (" + e.what() + ")");
   }
   if (!ctx.ctm.is_finite()) fail(node, "transforms overflow a double");
 }
@@ -278,14 +284,7 @@ double Reader::length(pugi::xml_node node, const char* name, Axis axis, const Co
   } catch (const SyntaxError& e) {
     fail(node, std::string("attribute ") + name + ": " + e.what());
   }
-  if (!number) {
-    // "NaN" and "Infinity" are refused: no finite geometry can stand for them.
-    std::string lower(value);
-    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    if (lower.find("nan") != std::string::npos || lower.find("inf") != std::string::npos)
-      fail(node, std::string("attribute ") + name + "=\"" + value + "\" is not a finite number");
-    return fallback;  // an invalid length is ignored, as browsers do
-  }
+  if (!number) return fallback;  // an invalid length is ignored, as browsers do
   double scale = 1.0;
   if (unit.empty() || unit == "px") {
     scale = 1.0;
@@ -373,28 +372,37 @@ void Reader::walk(pugi::xml_node node, Context ctx) {
   // gradients, filters, style, metadata, title, desc, ... (SVG 1.1 §5.3: never rendered directly).
 }
 
+std::optional<ViewBox> Reader::view_box_of(pugi::xml_node node) {
+  if (!has_attr(node, "viewBox")) return std::nullopt;
+  const std::string text = attr(node, "viewBox");  // the scanner only views it
+  NumberScanner in(text);
+  ViewBox vb;
+  try {
+    vb.x = in.number();
+    in.skip_separator();
+    vb.y = in.number();
+    in.skip_separator();
+    vb.width = in.number();
+    in.skip_separator();
+    vb.height = in.number();
+  } catch (const SyntaxError& e) {
+    warn_once("viewBox", "ignored a malformed viewBox (" + std::string(e.what()) + ")");
+    return std::nullopt;
+  }
+  if (vb.width < 0 || vb.height < 0) {  // SVG 1.1 §7.7: an error; browsers ignore the attribute
+    warn_once("viewBox", "ignored a viewBox with a negative size");
+    return std::nullopt;
+  }
+  return vb;
+}
+
 void Reader::walk_viewport(pugi::xml_node node, pugi::xml_node content, Context ctx, double x, double y,
                            double width, double height) {
   if (!(width > 0 && height > 0)) return;  // SVG 1.1 §5.1.2: a zero-sized viewport disables rendering
-  ViewBox vb;
-  bool has_view_box = false;
-  if (has_attr(node, "viewBox")) {
-    NumberScanner in(attr(node, "viewBox"));
-    try {
-      vb.x = in.number();
-      in.skip_separator();
-      vb.y = in.number();
-      in.skip_separator();
-      vb.width = in.number();
-      in.skip_separator();
-      vb.height = in.number();
-      has_view_box = true;
-    } catch (const SyntaxError& e) {
-      warn_once("viewBox", "ignored a malformed viewBox (" + std::string(e.what()) + ")");
-    }
-    if (has_view_box && (vb.width < 0 || vb.height < 0)) has_view_box = false;
-    if (has_view_box && (vb.width == 0 || vb.height == 0)) return;  // rendering disabled
-  }
+  const std::optional<ViewBox> view_box = view_box_of(node);
+  if (view_box && (view_box->width == 0 || view_box->height == 0)) return;  // rendering disabled
+  const bool has_view_box = view_box.has_value();
+  const ViewBox vb = view_box.value_or(ViewBox{});
   if (has_view_box) {
     ctx.ctm = ctx.ctm * viewbox_transform(vb, attr(node, "preserveAspectRatio"), x, y, width, height);
     ctx.viewport_width = vb.width;
@@ -479,7 +487,10 @@ void Reader::draw_shape(pugi::xml_node node, std::string_view tag, const Context
   std::vector<Subpath> subpaths;
   if (tag == "path") {
     try {
-      subpaths = parse_path_data(attr(node, "d"));
+      bool truncated = false;
+      subpaths = parse_path_data(attr(node, "d"), &truncated);
+      if (truncated)
+        warn_once("truncated-path", where(node) + ": path data ends inside a command; drawn up to there");
     } catch (const SyntaxError& e) {
       fail(node, std::string("bad path data: ") + e.what() + " at offset " + std::to_string(e.offset()));
     }
@@ -561,22 +572,9 @@ FeatureSoup Reader::read() {
   if (!apply_style(root, "svg", ctx)) {
     warn_once("root-hidden", "the root element has display:none: nothing is drawn");
   } else {
-    bool sized = false;
-    if (has_attr(root, "viewBox")) {
-      NumberScanner in(attr(root, "viewBox"));
-      try {
-        in.number();
-        in.skip_separator();
-        in.number();
-        in.skip_separator();
-        const double w = in.number();
-        in.skip_separator();
-        const double h = in.number();
-        if (w > 0 && h > 0) ctx.viewport_width = w, ctx.viewport_height = h, sized = true;
-      } catch (const SyntaxError&) {
-        warn_once("viewBox", "ignored the root's malformed viewBox");
-      }
-    }
+    const std::optional<ViewBox> vb = view_box_of(root);
+    const bool sized = vb && vb->width > 0 && vb->height > 0;
+    if (sized) ctx.viewport_width = vb->width, ctx.viewport_height = vb->height;
     if (!sized) {
       ctx.viewport_width = length(root, "width", Axis::x, ctx, 100);
       ctx.viewport_height = length(root, "height", Axis::y, ctx, 100);

@@ -88,7 +88,7 @@ Affine parse_transform(std::string_view text) {
     result = result * t;  // the list applies right to left: the last function acts first
     in.skip_separator();
   }
-  if (!result.is_finite()) throw SyntaxError("transform overflows a double", 0);
+  if (!result.is_finite()) throw SyntaxError("transform overflows a double", 0, true);
   return result;
 }
 

@@ -110,6 +110,16 @@ TEST(Reader, TransformsNestedGroups) {
   expect_point(s.curves[0].bezier.p[3], {98, 4});
 }
 
+TEST(Reader, PercentagesReferToTheRootViewBox) {
+  const FeatureSoup s = read(doc("<rect x='-50%' y='-50%' width='50%' height='25%'/>", "viewBox='-100 -100 200 400'"));
+  const auto b = s.bounds();
+  expect_point(b.min, {-100, -200});
+  expect_point(b.max, {0, -100});
+  // Without a viewBox, the root's width and height (in any unit) are the reference.
+  const FeatureSoup t = read(doc("<line x2='100%' y2='10%'/>", "width='1in' height='2in'"));
+  expect_point(t.curves.at(0).bezier.p[3], {96, 19.2});
+}
+
 TEST(Reader, NestedSvgViewport) {
   const FeatureSoup s =
       read(doc("<svg x='10' y='20' width='100' height='100' viewBox='0 0 10 10'><line x2='10'/></svg>"));
@@ -253,6 +263,20 @@ TEST(Reader, BoundsAreTight) {
   expect_point(b.max, {1, 1}, 1e-12);
 }
 
+TEST(Reader, UnusualButRenderedByBrowsers) {
+  // Path data that ends inside a command is drawn up to there; a malformed transform is ignored.
+  // Both with a warning naming the element.
+  const FeatureSoup s = read(doc(
+      "<path id='p' d='M 0 0 L 10 0 A 5 5 0 1 '/>"
+      "<line id='l' x2='1' transform='matrix(1 0 0 1 5 5'/>"));
+  ASSERT_EQ(s.curves.size(), 2u);
+  expect_point(s.curves[0].bezier.p[3], {10, 0});
+  expect_point(s.curves[1].bezier.p[0], {0, 0});
+  ASSERT_EQ(s.warnings.size(), 2u);
+  EXPECT_NE(s.warnings[0].find("id=\"p\""), std::string::npos) << s.warnings[0];
+  EXPECT_NE(s.warnings[1].find("id=\"l\""), std::string::npos) << s.warnings[1];
+}
+
 // --- bad input: refused with a message naming the file and the place ---
 
 TEST(ReaderErrors, NotXml) {
@@ -284,6 +308,7 @@ TEST(ReaderErrors, NonFiniteNumbers) {
   // Finite numbers that overflow only once transformed.
   EXPECT_NE(error_of(doc("<g transform='scale(1e200)'><line x2='1e200'/></g>")).find("overflow"), std::string::npos);
   EXPECT_NE(error_of(doc("<line x2='1' transform='scale(1e999)'/>")), "");
+  EXPECT_NE(error_of(doc("<line x2='1' transform='translate(NaN 0)'/>")), "");
 }
 
 TEST(ReaderErrors, UnknownPathCommandNamesTheElement) {
