@@ -26,7 +26,6 @@ namespace curvemesh::svg {
 namespace {
 
 constexpr std::string_view kSvgNamespace = "http://www.w3.org/2000/svg";
-constexpr std::string_view kXlinkNamespace = "http://www.w3.org/1999/xlink";
 
 // Inherited state while walking the tree.
 struct Context {
