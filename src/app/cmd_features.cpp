@@ -1,9 +1,12 @@
-// `curvemesh features`: run the SVG reader (and later the feature stage) and dump the result.
+// `curvemesh features`: the SVG reader and, with --processed, feature processing (paper §4),
+// dumped as JSON and optionally drawn as SVG.
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <memory>
 
 #include "app/commands.hpp"
+#include "features/features.hpp"
+#include "io/features_json.hpp"
 #include "io/output_file.hpp"
 #include "io/soup_json.hpp"
 #include "io/soup_svg.hpp"
@@ -17,7 +20,9 @@ struct FeaturesArgs {
   std::string input;
   std::string output_json;
   std::string output_svg;
+  bool processed = false;
   svg::ReadOptions read;
+  features::Options features;
 };
 
 int run_features(const FeaturesArgs& args) {
@@ -29,9 +34,19 @@ int run_features(const FeaturesArgs& args) {
     return kInvalidInput;
   }
   for (const std::string& w : soup.warnings) std::cerr << "curvemesh: " << args.input << ": warning: " << w << "\n";
+
+  nlohmann::ordered_json json = io::soup_to_json(soup);
+  std::string drawing;
+  if (args.processed) {
+    const features::Features f = features::process(soup, args.features);
+    io::add_features_json(f, json);
+    if (!args.output_svg.empty()) drawing = io::features_to_svg(f);
+  } else if (!args.output_svg.empty()) {
+    drawing = io::soup_to_svg(soup);
+  }
   try {
-    io::write_file_atomically(args.output_json, io::soup_to_json(soup).dump(1) + "\n");
-    if (!args.output_svg.empty()) io::write_file_atomically(args.output_svg, io::soup_to_svg(soup));
+    io::write_file_atomically(args.output_json, json.dump(1) + "\n");
+    if (!args.output_svg.empty()) io::write_file_atomically(args.output_svg, drawing);
   } catch (const io::OutputError& e) {
     std::cerr << "curvemesh: " << e.what() << "\n";
     return kInvalidInput;
@@ -45,14 +60,44 @@ Runner add_features_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "features",
       "Read an SVG drawing into a soup of cubic Bézier curves and isolated points, in the root element's "
-      "user space (viewBox units, y down), and write it as JSON (and optionally as an SVG drawing).");
+      "user space (viewBox units, y down), and write it as JSON (and optionally as an SVG drawing). "
+      "With --processed, also run feature processing (paper §4): primary sections, secondary segments.");
   cmd->add_option("input", args->input, "SVG file to read")->required();
   cmd->add_option("-o,--output", args->output_json, "JSON file to write (keys: bbox, curves, points, warnings)")
       ->required();
-  cmd->add_option("--svg", args->output_svg, "also draw the soup into this SVG file");
+  cmd->add_option("--svg", args->output_svg,
+                  "also draw into this SVG file: the soup, or with --processed the features (primary red, "
+                  "secondary green, points black)");
+  cmd->add_flag("--processed", args->processed,
+                "run feature processing and add sections, segments and feature_points to the JSON");
   cmd->add_option("--degenerate-tolerance", args->read.degenerate_tolerance_rel,
-                  "paths whose control points all lie within this distance (relative to the bounding-box "
-                  "diagonal) become isolated points (paper: epsilon_m)")
+                  "reader: paths whose control points all lie within this distance (relative to the "
+                  "bounding-box diagonal d) become isolated points")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  auto& f = args->features;
+  cmd->add_option("--mu", f.mu_rel, "feature envelope mu, relative to d: min distance between primary features")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--epsilon", f.epsilon_rel, "envelope epsilon of secondary features, relative to d")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("-l,--edge-length", f.edge_length_rel, "target edge length l, relative to d")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--min-edge-length", f.min_edge_length_rel,
+                  "minimal edge length l_m, relative to d: curvature above 2/l_m makes a feature secondary")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--min-angle", f.alpha_deg,
+                  "alpha in degrees: max turning of the curve along one primary edge (target min angle)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 60.0));
+  cmd->add_option("--junction-angle", f.junction_angle_deg,
+                  "primary pieces sharing an endpoint stay primary when they meet at least at this angle (deg)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 180.0));
+  cmd->add_option("--eps-m", f.eps_m_rel, "round-off tolerance epsilon_m on control points, relative to d")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   return [args] { return run_features(*args); };

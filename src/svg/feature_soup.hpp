@@ -43,7 +43,7 @@ struct SoupCurve {
 };
 
 struct SoupPoint {
-  Vec2 p;
+  Vec2 p = Vec2::Zero();
   int source = -1;
 };
 

@@ -9,7 +9,7 @@
 namespace curvemesh::svg {
 
 struct Subpath {
-  Vec2 start;                          // the moveto point
+  Vec2 start = Vec2::Zero();           // the moveto point
   std::vector<CubicBezier> segments;   // lines, quadratics and arc pieces all as cubics
   bool closed = false;                 // ended by Z (a closing segment was added if needed)
 };

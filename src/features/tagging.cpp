@@ -1,0 +1,154 @@
+// §4 "Primary and secondary feature tagging": a greedy, discrete μ-separation. Candidate pairs
+// come from CGAL's box intersection (boxes grown by μ/2), so the cost is O(n log² n + k), not
+// quadratic.
+//
+// The rule (Definition 3.1 made discrete): two primary pieces are at least μ apart, except
+//  - consecutive pieces of one curve section, and
+//  - pieces that share an endpoint exactly (a path's corners, shapes that touch at a vertex)
+//    and meet there at an angle of at least the junction angle (default α = 10°), so that a
+//    triangle with minimal angle α fits between them.
+// Pieces are visited by decreasing length of their curve section (long features first), then
+// along the section; a piece in conflict with an already primary piece becomes secondary.
+#include <CGAL/box_intersection_d.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "features/pieces.hpp"
+
+namespace curvemesh::features::detail {
+
+namespace {
+
+using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 2, int>;
+
+Box box_of(const Vec2& a, const Vec2& b, double grow, int index) {
+  double lo[2] = {std::min(a.x(), b.x()) - grow, std::min(a.y(), b.y()) - grow};
+  double hi[2] = {std::max(a.x(), b.x()) + grow, std::max(a.y(), b.y()) + grow};
+  return Box(lo, hi, index);
+}
+
+double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
+
+double point_segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double s = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + s * ab)).norm();
+}
+
+// A tolerance test, not a topological decision: doubles are enough here.
+double segment_distance(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
+  const double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
+  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return 0.0;
+  return std::min({point_segment_distance(a, c, d), point_segment_distance(b, c, d),
+                   point_segment_distance(c, a, b), point_segment_distance(d, a, b)});
+}
+
+double angle_between(const Vec2& u, const Vec2& v) {
+  return std::atan2(std::abs(cross(u, v)), u.dot(v));
+}
+
+}  // namespace
+
+// True when pieces p and q may not both be primary.
+static bool in_conflict(const Discretized& d, int i, int j, const Lengths& len) {
+  const Piece& p = d.pieces[i];
+  const Piece& q = d.pieces[j];
+  if (p.section == q.section && std::abs(i - j) == 1) return false;
+  // A shared endpoint: allowed when the pieces leave it at a wide enough angle.
+  const Vec2* shared = nullptr;
+  Vec2 p_other, q_other;
+  int shared_count = 0;
+  for (const auto& [pe, po] : {std::pair{p.a, p.b}, std::pair{p.b, p.a}})
+    for (const auto& [qe, qo] : {std::pair{q.a, q.b}, std::pair{q.b, q.a}})
+      if (pe == qe) {
+        ++shared_count;
+        shared = &pe;
+        p_other = po;
+        q_other = qo;
+      }
+  if (shared_count == 1) {
+    // Pieces are chords: two chords that share an endpoint meet nowhere else.
+    const Vec2 u = p_other - *shared, v = q_other - *shared;
+    if (u.norm() == 0 || v.norm() == 0) return true;
+    return angle_between(u, v) < len.junction_angle_rad;
+  }
+  if (shared_count > 1) return true;  // the same chord twice
+  return segment_distance(p.a, p.b, q.a, q.b) < len.mu;
+}
+
+void tag_primary_secondary(Discretized& d, const Lengths& len) {
+  const int n = static_cast<int>(d.pieces.size());
+  std::vector<Box> boxes;
+  boxes.reserve(n);
+  for (int i = 0; i < n; ++i)
+    if (!d.pieces[i].too_curved) boxes.push_back(box_of(d.pieces[i].a, d.pieces[i].b, 0.5 * len.mu, i));
+
+  std::vector<std::vector<int>> conflicts(n);
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+    const int i = x.info(), j = y.info();
+    if (in_conflict(d, i, j, len)) {
+      conflicts[i].push_back(j);
+      conflicts[j].push_back(i);
+    }
+  });
+
+  // Greedy: long sections first, pieces in order along each section.
+  std::vector<int> order(d.sections.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return d.sections[a].length > d.sections[b].length; });
+  std::vector<char> decided(n, 0);
+  for (const int s : order) {
+    const CurveSection& section = d.sections[s];
+    for (int i = section.first_piece; i < section.first_piece + section.piece_count; ++i) {
+      Piece& p = d.pieces[i];
+      bool primary = !p.too_curved;
+      if (primary)
+        for (const int j : conflicts[i])
+          if (decided[j] && d.pieces[j].kind == Kind::primary) {
+            primary = false;
+            break;
+          }
+      p.kind = primary ? Kind::primary : Kind::secondary;
+      decided[i] = 1;
+    }
+  }
+
+  // Isolated points within μ of a primary piece or of an earlier point are absorbed by it.
+  std::vector<Box> point_boxes, primary_boxes;
+  for (int k = 0; k < static_cast<int>(d.points.size()); ++k)
+    point_boxes.push_back(box_of(d.points[k].p, d.points[k].p, 0.5 * len.mu, k));
+  for (int i = 0; i < n; ++i)
+    if (d.pieces[i].kind == Kind::primary) primary_boxes.push_back(box_of(d.pieces[i].a, d.pieces[i].b, 0.5 * len.mu, i));
+  std::vector<char> drop(d.points.size(), 0);
+  CGAL::box_intersection_d(point_boxes.begin(), point_boxes.end(), primary_boxes.begin(), primary_boxes.end(),
+                           [&](const Box& pt, const Box& pc) {
+                             const Piece& p = d.pieces[pc.info()];
+                             if (point_segment_distance(d.points[pt.info()].p, p.a, p.b) < len.mu) drop[pt.info()] = 1;
+                           });
+  std::vector<std::vector<int>> near(d.points.size());
+  CGAL::box_self_intersection_d(point_boxes.begin(), point_boxes.end(), [&](const Box& x, const Box& y) {
+    if ((d.points[x.info()].p - d.points[y.info()].p).norm() < len.mu) {
+      near[x.info()].push_back(y.info());
+      near[y.info()].push_back(x.info());
+    }
+  });
+  for (std::size_t k = 0; k < d.points.size(); ++k) {
+    if (drop[k]) continue;
+    for (const int other : near[k])
+      if (other < static_cast<int>(k) && !drop[other]) {
+        drop[k] = 1;
+        break;
+      }
+  }
+  std::vector<IsolatedPoint> kept;
+  for (std::size_t k = 0; k < d.points.size(); ++k)
+    if (!drop[k]) kept.push_back(d.points[k]);
+  d.points = std::move(kept);
+}
+
+}  // namespace curvemesh::features::detail

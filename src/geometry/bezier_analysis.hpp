@@ -1,0 +1,38 @@
+#pragma once
+// The differential geometry of one cubic that feature processing needs (paper §3.2, §4):
+// inflections, turning, the half-turning split, degenerate and straight tests.
+#include <vector>
+
+#include "geometry/bezier.hpp"
+
+namespace curvemesh::geometry {
+
+// Parameters in (0, 1) where the curvature changes sign: the simple roots of
+// det(c'(t), c''(t)) = 0 (paper eq. 1) with c'(t) ≠ 0, sorted. That determinant is a quadratic
+// in t; coefficients below `tolerance_rel` times the squared size of the control polygon count
+// as zero, so straight and degenerate curves have none, and no result is ever NaN.
+std::vector<double> inflection_parameters(const CubicBezier& c, double tolerance_rel = 1e-12);
+
+// Total turning of the tangent over [t0, t1], in radians: the sum of the absolute angles between
+// tangents at 33 evenly spaced parameters (plus the inflections inside). Exact for pieces without
+// inflections whose tangent turns less than π between neighbouring samples; a cusp counts π.
+// Where c' vanishes the tangent is its limit from inside the interval.
+double turning_angle(const CubicBezier& c, double t0 = 0.0, double t1 = 1.0);
+
+// §4 "Total curvature split": the t in (0, 1) where the tangent is parallel to the average of the
+// end tangents (minus the average when the ends turn by more than π), which halves the turning of
+// a curve without inflections. 0.5 when the equation gives nothing usable.
+double half_turning_parameter(const CubicBezier& c);
+
+// Split parameters in (0, 1), sorted, such that each piece of a curve without inflections turns
+// less than `max_turning` (repeated half-turning splits). Empty when it already does.
+std::vector<double> split_for_turning(const CubicBezier& c, double max_turning);
+
+// All control points within `eps` of their average (paper §4: removal of degenerate curves).
+bool is_degenerate(const CubicBezier& c, double eps);
+
+// The sum of the distances of the control points to their least-squares line is below `eps`
+// (paper §4: such curves are replaced by segments).
+bool is_straight(const CubicBezier& c, double eps);
+
+}  // namespace curvemesh::geometry

@@ -1,0 +1,177 @@
+// Feature processing (paper §4) on small drawings whose answers are known, checked with dense
+// sampling and brute force rather than with the stage's own bookkeeping.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "features/features.hpp"
+#include "geometry/closest_point.hpp"
+#include "svg/reader.hpp"
+
+using namespace curvemesh;
+using features::Kind;
+using geometry::CubicBezier;
+using geometry::Vec2;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+svg::FeatureSoup soup_of(const std::vector<CubicBezier>& curves) {
+  svg::FeatureSoup s;
+  for (const CubicBezier& c : curves) s.curves.push_back({c, 0, {}, {}});
+  s.sources.push_back({"path", "", 0, 1});
+  return s;
+}
+
+double point_segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double s = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (p - a - s * ab).norm();
+}
+
+int count(const features::Features& f, Kind kind) {
+  int n = 0;
+  for (const auto& s : f.sections) n += s.kind == kind;
+  return n;
+}
+
+std::string drawing(const std::string& body) {
+  return "<svg xmlns='http://www.w3.org/2000/svg' viewBox='0 0 100 100'>" + body + "</svg>";
+}
+
+}  // namespace
+
+TEST(Features, ResamplingConditionsHoldByDenseSampling) {
+  const auto soup = svg::read_svg_file(std::string(CURVEMESH_TEST_DATA) + "/../../examples/open-curves.svg");
+  const auto f = features::process(soup);
+  const auto& L = f.lengths;
+  int edges = 0;
+  for (const auto& s : f.sections) {
+    if (s.kind != Kind::primary) continue;
+    const CubicBezier whole = s.straight ? s.piece : soup.curves[s.curve].bezier;
+    for (std::size_t k = 0; k + 1 < s.ts.size(); ++k) {
+      ++edges;
+      const double t0 = s.straight ? (s.ts[k] - s.t0) / (s.t1 - s.t0) : s.ts[k];
+      const double t1 = s.straight ? (s.ts[k + 1] - s.t0) / (s.t1 - s.t0) : s.ts[k + 1];
+      const Vec2 a = s.polyline[k], b = s.polyline[k + 1];
+      EXPECT_LE((b - a).norm(), L.edge * (1 + 1e-12));  // (1) at most l long
+      double deviation = 0, turning = 0, prev = 0;
+      for (int i = 0; i <= 400; ++i) {
+        const double t = t0 + (t1 - t0) * i / 400;
+        deviation = std::max(deviation, point_segment_distance(whole.eval(t), a, b));
+        const Vec2 d = whole.derivative(t);
+        const double angle = std::atan2(d.y(), d.x());
+        if (i > 0) turning += std::abs(std::remainder(angle - prev, 2 * kPi));
+        prev = angle;
+      }
+      EXPECT_LE(deviation, L.mu);                   // (2) within μ of its chord
+      EXPECT_LE(turning, L.alpha_rad + 1e-9);       // (3) turns at most α
+    }
+  }
+  EXPECT_GT(edges, 50);
+}
+
+TEST(Features, ParallelLinesCloserThanMuKeepOnePrimary) {
+  // d ≈ 100√2; μ = 1e-3 d ≈ 0.141. Lines 0.05 apart: one must go; 1.0 apart: both stay.
+  const auto close = features::process(soup_of({CubicBezier::line({0, 0}, {100, 0}),
+                                                CubicBezier::line({0, 0.05}, {100, 0.05}),
+                                                CubicBezier::line({0, 100}, {1, 100})}));
+  EXPECT_EQ(count(close, Kind::primary), 2);  // one long line and the far short one
+  const auto far = features::process(soup_of({CubicBezier::line({0, 0}, {100, 0}),
+                                              CubicBezier::line({0, 1}, {100, 1}),
+                                              CubicBezier::line({0, 100}, {1, 100})}));
+  EXPECT_EQ(count(far, Kind::primary), 3);
+  EXPECT_EQ(count(far, Kind::secondary), 0);
+}
+
+TEST(Features, JunctionRule) {
+  // A right-angle corner shared exactly: both primary. A 5° wedge: the pieces at the tip clash.
+  const auto corner = features::process(
+      soup_of({CubicBezier::line({0, 0}, {100, 0}), CubicBezier::line({0, 0}, {0, 100})}));
+  EXPECT_EQ(count(corner, Kind::secondary), 0);
+  const double a = 5 * kPi / 180;
+  const auto wedge = features::process(soup_of(
+      {CubicBezier::line({0, 0}, {100, 0}), CubicBezier::line({0, 0}, {100 * std::cos(a), 100 * std::sin(a)})}));
+  EXPECT_GE(count(wedge, Kind::secondary), 1);
+  // Only near the tip: far from it the wedge's sides are more than μ apart.
+  for (const auto& s : wedge.sections) {
+    if (s.kind != Kind::secondary) continue;
+    for (const Vec2& v : s.polyline) EXPECT_LT(v.norm(), 20.0);
+  }
+}
+
+TEST(Features, CrossingCurvesLoseOnlyTheCrossing) {
+  // Two crossing lines: near the crossing one of them is secondary, the rest is primary.
+  const auto f = features::process(
+      soup_of({CubicBezier::line({0, 50}, {100, 50}), CubicBezier::line({50, 0}, {50, 100})}));
+  double secondary_length = 0, primary_length = 0;
+  for (const auto& s : f.sections)
+    for (std::size_t k = 0; k + 1 < s.polyline.size(); ++k)
+      (s.kind == Kind::primary ? primary_length : secondary_length) += (s.polyline[k + 1] - s.polyline[k]).norm();
+  EXPECT_GT(secondary_length, 0);
+  EXPECT_LE(secondary_length, 2 * f.lengths.edge + 1e-9);
+  EXPECT_NEAR(primary_length + secondary_length, 200, 1e-9);
+}
+
+TEST(Features, SecondaryStaysWithinEpsilon) {
+  // A dense bundle of nearly overlapping wiggles: most of it is secondary and simplified.
+  std::vector<CubicBezier> curves;
+  for (int i = 0; i < 20; ++i) {
+    const double y = 50 + 0.01 * i;
+    curves.push_back({{0, y}, {30, y + 20}, {70, y - 20}, {100, y}});
+  }
+  curves.push_back(CubicBezier::line({0, 0}, {100, 100}));
+  const auto soup = soup_of(curves);
+  const auto f = features::process(soup);
+  ASSERT_FALSE(f.segments.empty());
+  for (const auto& seg : f.segments) {
+    const CubicBezier& c = soup.curves[seg.curve].bezier;
+    for (int i = 0; i <= 10; ++i) {
+      const Vec2 p = seg.a + (seg.b - seg.a) * (i / 10.0);
+      EXPECT_LE(geometry::closest_point(c, p).distance, f.lengths.epsilon);
+    }
+  }
+}
+
+TEST(Features, DegenerateAndStraightCurves) {
+  const auto f = features::process(soup_of({CubicBezier::line({0, 0}, {100, 100}),
+                                            CubicBezier({50, 10}, {50 + 1e-12, 10}, {50, 10}, {50, 10}),
+                                            CubicBezier({0, 90}, {30, 90 + 1e-12}, {60, 90}, {90, 90}),
+                                            CubicBezier({0, 0}, {0, 50}, {50, 100}, {100, 100})}));
+  EXPECT_EQ(f.degenerate_curves, 1);
+  EXPECT_EQ(f.straight_curves, 2);
+  ASSERT_EQ(f.points.size(), 1u);
+  EXPECT_NEAR((f.points[0].p - Vec2(50, 10)).norm(), 0, 1e-9);
+}
+
+TEST(Features, IsolatedPointsNearPrimaryFeaturesAreAbsorbed) {
+  auto soup = soup_of({CubicBezier::line({0, 0}, {100, 0})});
+  soup.points.push_back({Vec2(50, 0.01), 0});  // within μ of the line
+  soup.points.push_back({Vec2(50, 50), 0});    // far from everything
+  soup.points.push_back({Vec2(50, 50.01), 0});  // within μ of the previous point
+  const auto f = features::process(soup);
+  ASSERT_EQ(f.points.size(), 1u);
+  EXPECT_EQ(f.points[0].p, Vec2(50, 50));
+}
+
+TEST(Features, DeterministicAndScaleInvariant) {
+  const std::string text = drawing(
+      "<path d='M10 10 C 40 90 60 -20 90 50 S 20 80 10 10'/><circle cx='50' cy='50' r='30'/>"
+      "<path d='M0 50 L 100 50 M 50 0 L 50 100'/>");
+  const auto a = features::process(svg::read_svg(text));
+  const auto b = features::process(svg::read_svg(text));
+  ASSERT_EQ(a.sections.size(), b.sections.size());
+  for (std::size_t i = 0; i < a.sections.size(); ++i) EXPECT_EQ(a.sections[i].polyline, b.sections[i].polyline);
+  // The same drawing scaled by 1e-6 and 1e6 gives the same kinds and counts.
+  for (const char* scale : {"1e-6", "1e6"}) {
+    const auto s = features::process(
+        svg::read_svg("<svg><g transform='scale(" + std::string(scale) + ")'>" + text + "</g></svg>"));
+    ASSERT_EQ(s.sections.size(), a.sections.size()) << scale;
+    for (std::size_t i = 0; i < a.sections.size(); ++i) {
+      EXPECT_EQ(s.sections[i].kind, a.sections[i].kind);
+      EXPECT_EQ(s.sections[i].polyline.size(), a.sections[i].polyline.size());
+    }
+  }
+}
