@@ -60,6 +60,7 @@ class Discretizer {
  private:
   void add_curve(int index) {
     const CubicBezier& c = soup_.curves[index].bezier;
+    curve_along_ = 0;
     if (geometry::is_degenerate(c, len_.eps_m)) {
       const Vec2 centre = (c.p[0] + c.p[1] + c.p[2] + c.p[3]) / 4.0;
       out_.points.push_back({centre, soup_.curves[index].source});
@@ -128,8 +129,11 @@ class Discretizer {
 
   void finish_section(CurveSection& s) {
     s.piece_count = static_cast<int>(out_.pieces.size()) - s.first_piece;
-    for (int k = s.first_piece; k < s.first_piece + s.piece_count; ++k)
+    for (int k = s.first_piece; k < s.first_piece + s.piece_count; ++k) {
+      out_.pieces[k].along = curve_along_ + s.length;
       s.length += (out_.pieces[k].b - out_.pieces[k].a).norm();
+    }
+    curve_along_ += s.length;
     out_.sections.push_back(s);
   }
 
@@ -170,6 +174,7 @@ class Discretizer {
   const svg::FeatureSoup& soup_;
   const Lengths& len_;
   Discretized out_;
+  double curve_along_ = 0;  // polyline length of the current input curve so far
 };
 
 }  // namespace

@@ -3,7 +3,8 @@
 // quadratic.
 //
 // The rule (Definition 3.1 made discrete): two primary pieces are at least μ apart, except
-//  - consecutive pieces of one curve section, and
+//  - pieces of one input curve joined by at most π/2·μ of its polyline (consecutive pieces, and
+//    the pieces of a bend tighter than μ: one connected component in the μ-ball), and
 //  - pieces that share an endpoint exactly (a path's corners, shapes that touch at a vertex)
 //    and meet there at an angle of at least the junction angle (default α = 10°), so that a
 //    triangle with minimal angle α fits between them.
@@ -13,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 
 #include "features/pieces.hpp"
@@ -57,7 +59,14 @@ double angle_between(const Vec2& u, const Vec2& v) {
 static bool in_conflict(const Discretized& d, int i, int j, const Lengths& len) {
   const Piece& p = d.pieces[i];
   const Piece& q = d.pieces[j];
-  if (p.section == q.section && std::abs(i - j) == 1) return false;
+  // One connected component inside the μ-ball (Definition 3.1): pieces of one input curve joined
+  // by at most π/2·μ of its polyline, as on a tight bend, may come close.
+  if (d.sections[p.section].curve == d.sections[q.section].curve) {
+    const Piece& first = i < j ? p : q;
+    const Piece& second = i < j ? q : p;
+    const double gap = second.along - (first.along + (first.b - first.a).norm());
+    if (gap <= 0.5 * std::numbers::pi * len.mu) return false;
+  }
   // A shared endpoint: allowed when the pieces leave it at a wide enough angle.
   const Vec2* shared = nullptr;
   Vec2 p_other, q_other;
