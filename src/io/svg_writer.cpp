@@ -31,10 +31,14 @@ void SvgWriter::number(double v) {
   out_.append(buf, r.ptr);
 }
 
-void SvgWriter::cubic(const geometry::CubicBezier& c, std::string_view colour) {
+void SvgWriter::path_start(std::string_view colour) {
   out_ += "<path vector-effect=\"non-scaling-stroke\" stroke=\"";
   out_ += colour;
   out_ += "\" d=\"M";
+}
+
+void SvgWriter::cubic(const geometry::CubicBezier& c, std::string_view colour) {
+  path_start(colour);
   for (int i = 0; i < 4; ++i) {
     if (i == 1) out_ += " C";
     out_ += ' ';
@@ -46,9 +50,8 @@ void SvgWriter::cubic(const geometry::CubicBezier& c, std::string_view colour) {
 }
 
 void SvgWriter::segment(const geometry::Vec2& a, const geometry::Vec2& b, std::string_view colour) {
-  out_ += "<path vector-effect=\"non-scaling-stroke\" stroke=\"";
-  out_ += colour;
-  out_ += "\" d=\"M ";
+  path_start(colour);
+  out_ += ' ';
   number(a.x());
   out_ += ' ';
   number(a.y());

@@ -18,6 +18,7 @@ class SvgWriter {
 
  private:
   void number(double v);
+  void path_start(std::string_view colour);  // "<path ... stroke=colour d="M"
   std::string out_;
   double dot_radius_ = 1.0;
 };

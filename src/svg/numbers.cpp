@@ -9,6 +9,12 @@ namespace curvemesh::svg {
 
 bool is_svg_whitespace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f'; }
 
+std::string_view trim_svg_whitespace(std::string_view s) {
+  while (!s.empty() && is_svg_whitespace(s.front())) s.remove_prefix(1);
+  while (!s.empty() && is_svg_whitespace(s.back())) s.remove_suffix(1);
+  return s;
+}
+
 void NumberScanner::skip_whitespace() {
   while (!at_end() && is_svg_whitespace(s_[pos_])) ++pos_;
 }
@@ -119,10 +125,7 @@ bool NumberScanner::flag() {
 }
 
 std::optional<double> parse_number_with_unit(std::string_view text, std::string_view* unit) {
-  std::size_t b = 0, e = text.size();
-  while (b < e && is_svg_whitespace(text[b])) ++b;
-  while (e > b && is_svg_whitespace(text[e - 1])) --e;
-  text = text.substr(b, e - b);
+  text = trim_svg_whitespace(text);
   const std::size_t n = scan_number(text);
   if (n == 0) {
     if (names_non_finite(text)) throw SyntaxError("not a finite number", 0, true);

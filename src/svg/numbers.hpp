@@ -38,6 +38,8 @@ class NumberScanner {
 };
 
 bool is_svg_whitespace(char c);
+// `s` without leading and trailing SVG whitespace.
+std::string_view trim_svg_whitespace(std::string_view s);
 
 // Parses a whole attribute as one number with an optional unit suffix left in `unit`.
 // Returns nothing when the text is not a number; throws SyntaxError (non_finite) when it is NaN,

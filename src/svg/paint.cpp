@@ -75,12 +75,6 @@ constexpr std::array<NamedColor, 147> kNamedColors = {{
     {"whitesmoke", 0xf5f5f5}, {"yellow", 0xffff00}, {"yellowgreen", 0x9acd32},
 }};
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && is_svg_whitespace(s.front())) s.remove_prefix(1);
-  while (!s.empty() && is_svg_whitespace(s.back())) s.remove_suffix(1);
-  return s;
-}
-
 std::string lower(std::string_view s) {
   std::string out(s);
   std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return char(std::tolower(c)); });
@@ -132,7 +126,7 @@ std::optional<Paint> parse_rgb_function(std::string_view args) {
 }  // namespace
 
 std::optional<Paint> parse_color(std::string_view text) {
-  text = trim(text);
+  text = trim_svg_whitespace(text);
   if (text.empty()) return std::nullopt;
   if (text[0] == '#') return parse_hex(text.substr(1));
   const std::string l = lower(text);
@@ -146,14 +140,14 @@ std::optional<Paint> parse_color(std::string_view text) {
 }
 
 std::optional<Paint> parse_paint(std::string_view text, const Paint& current_color) {
-  text = trim(text);
+  text = trim_svg_whitespace(text);
   const std::string l = lower(text);
   if (l == "none" || l == "transparent") return Paint{};
   if (l == "currentcolor") return current_color;
   if (l.rfind("url(", 0) == 0) {
     const auto close = text.find(')');
     if (close == std::string_view::npos) return std::nullopt;
-    std::string_view ref = trim(text.substr(4, close - 4));
+    std::string_view ref = trim_svg_whitespace(text.substr(4, close - 4));
     if (ref.size() >= 2 && (ref.front() == '"' || ref.front() == '\'')) ref = ref.substr(1, ref.size() - 2);
     const auto hash = ref.find('#');
     Paint p;

@@ -229,12 +229,6 @@ bool Reader::apply_style(pugi::xml_node node, std::string_view tag, Context& ctx
   }
   if (decls.empty()) return true;
 
-  auto trimmed = [](const std::string& v) {
-    std::string_view s(v);
-    while (!s.empty() && is_svg_whitespace(s.front())) s.remove_prefix(1);
-    while (!s.empty() && is_svg_whitespace(s.back())) s.remove_suffix(1);
-    return std::string(s);
-  };
   // `color` first: currentColor in fill/stroke refers to this element's computed colour.
   for (const auto& [name, value] : decls)
     if (name == "color")
@@ -245,9 +239,9 @@ bool Reader::apply_style(pugi::xml_node node, std::string_view tag, Context& ctx
     } else if (name == "stroke") {
       if (auto p = parse_paint(value, ctx.color)) ctx.stroke = *p;
     } else if (name == "display") {
-      if (trimmed(value) == "none") return false;
+      if (trim_svg_whitespace(value) == "none") return false;
     } else if (name == "visibility") {
-      const std::string v = trimmed(value);
+      const std::string_view v = trim_svg_whitespace(value);
       if (v == "hidden" || v == "collapse") ctx.visible = false;
       if (v == "visible") ctx.visible = true;
     }

@@ -9,12 +9,6 @@ namespace curvemesh::svg {
 
 namespace {
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (is_svg_whitespace(s.front()))) s.remove_prefix(1);
-  while (!s.empty() && (is_svg_whitespace(s.back()))) s.remove_suffix(1);
-  return s;
-}
-
 std::string strip_comments(std::string_view text) {
   std::string out;
   out.reserve(text.size());
@@ -40,10 +34,10 @@ Declarations parse_declarations_no_comments(std::string_view text) {
     const std::string_view decl = text.substr(start, end - start);
     const auto colon = decl.find(':');
     if (colon != std::string_view::npos) {
-      std::string name(trim(decl.substr(0, colon)));
-      std::string_view value = trim(decl.substr(colon + 1));
+      std::string name(trim_svg_whitespace(decl.substr(0, colon)));
+      std::string_view value = trim_svg_whitespace(decl.substr(colon + 1));
       if (const auto bang = value.find("!important"); bang != std::string_view::npos)
-        value = trim(value.substr(0, bang));
+        value = trim_svg_whitespace(value.substr(0, bang));
       std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::tolower(c)); });
       if (!name.empty()) out.emplace_back(std::move(name), std::string(value));
     }
@@ -66,7 +60,7 @@ void StyleSheet::add(std::string_view css_text) {
   while (i < s.size()) {
     const auto open = s.find('{', i);
     if (open == std::string_view::npos) break;
-    const std::string_view prelude = trim(s.substr(i, open - i));
+    const std::string_view prelude = trim_svg_whitespace(s.substr(i, open - i));
     // Find the matching '}' (nested blocks occur in @media).
     int depth = 0;
     std::size_t close = open;
@@ -81,7 +75,7 @@ void StyleSheet::add(std::string_view css_text) {
       while (start <= prelude.size()) {
         std::size_t comma = prelude.find(',', start);
         if (comma == std::string_view::npos) comma = prelude.size();
-        add_rule(trim(prelude.substr(start, comma - start)), decls);
+        add_rule(trim_svg_whitespace(prelude.substr(start, comma - start)), decls);
         start = comma + 1;
       }
     }
