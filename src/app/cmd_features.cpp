@@ -26,6 +26,12 @@ struct FeaturesArgs {
 };
 
 int run_features(const FeaturesArgs& args) {
+  if (args.processed && args.features.epsilon_rel < args.features.mu_rel) {
+    // Resampling already puts secondary chords up to μ from their curves.
+    std::cerr << "curvemesh: --epsilon (" << args.features.epsilon_rel << ") must be at least --mu ("
+              << args.features.mu_rel << ")\n";
+    return kUsage;
+  }
   svg::FeatureSoup soup;
   try {
     soup = svg::read_svg_file(args.input, args.read);

@@ -5,7 +5,7 @@ namespace curvemesh::features {
 
 struct Options {
   double mu_rel = 1e-3;                // μ: feature envelope, min distance between primary features
-  double epsilon_rel = 2e-3;           // ε: envelope of secondary features (2μ)
+  double epsilon_rel = 2e-3;           // ε: envelope of secondary features (2μ); at least μ
   double eps_m_rel = 1e-8;             // ε_m: round-off tolerance on control points
   double alpha_deg = 10.0;             // α: max turning per primary edge (and target min angle)
   double edge_length_rel = 1.0 / 20;   // l: target edge length

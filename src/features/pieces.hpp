@@ -40,7 +40,8 @@ Discretized discretize(const svg::FeatureSoup& soup, const Lengths& lengths);
 // fall within μ of a primary piece or of an earlier point.
 void tag_primary_secondary(Discretized& d, const Lengths& lengths);
 
-// §4: secondary endpoints closer than μ collapse (primary vertices stay where they are).
+// §4: secondary endpoints close to each other collapse (primary vertices stay where they are),
+// moving no endpoint more than ε − μ.
 std::vector<Segment> simplify_secondary(const Discretized& d, const Lengths& lengths);
 
 }  // namespace curvemesh::features::detail

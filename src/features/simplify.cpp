@@ -1,10 +1,11 @@
 // §4 "Secondary feature simplification": secondary endpoints closer than μ collapse, which
 // removes most of the slivers a drawing's near-misses would otherwise force into the mesh.
 //
-// To keep every secondary segment within ε = 2μ of its input (μ from resampling, μ from moving
-// its ends), no endpoint moves farther than μ: an endpoint within μ of a primary vertex snaps to
-// that vertex (primary features never move); the others are clustered greedily, each cluster
-// holding the endpoints within μ/2 of its first member, and collapse at the cluster's barycentre.
+// To keep every secondary segment within ε of its input, where resampling already spent μ (the
+// chord's distance to the curve), no endpoint moves farther than ε − μ (= μ by default): an
+// endpoint within ε − μ of a primary vertex snaps to that vertex (primary features never move);
+// the others are clustered greedily, each cluster holding the endpoints within (ε − μ)/2 of its
+// first member, and collapse at the cluster's barycentre.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -69,9 +70,10 @@ std::vector<Segment> simplify_secondary(const Discretized& d, const Lengths& len
     piece_of.push_back(i);
   }
   if (secondary.empty()) return {};
+  const double budget = std::max(0.0, len.epsilon - len.mu);  // how far an endpoint may move
 
-  // Primary vertices are fixed: snap to them first (a grid of cell μ finds those within μ).
-  PointGrid primary_grid(len.mu);
+  // Primary vertices are fixed: snap to them first.
+  PointGrid primary_grid(budget);
   std::vector<Vec2> primary_vertices;
   for (const Piece& p : d.pieces)
     if (p.kind == Kind::primary)
@@ -82,7 +84,7 @@ std::vector<Segment> simplify_secondary(const Discretized& d, const Lengths& len
   std::vector<Vec2> target(ends.size());
   std::vector<char> placed(ends.size(), 0);
   for (std::size_t k = 0; k < ends.size(); ++k) {
-    double best = len.mu;
+    double best = budget;
     int best_id = -1;
     primary_grid.near(ends[k], [&](int id) {
       const double dist = (primary_vertices[id] - ends[k]).norm();
@@ -91,15 +93,15 @@ std::vector<Segment> simplify_secondary(const Discretized& d, const Lengths& len
     if (best_id >= 0) target[k] = primary_vertices[best_id], placed[k] = 1;
   }
 
-  // Greedy clusters of radius μ/2 among the rest, collapsed at their barycentre.
-  PointGrid grid(0.5 * len.mu);
+  // Greedy clusters of radius budget/2 among the rest, collapsed at their barycentre.
+  PointGrid grid(0.5 * budget);
   for (std::size_t k = 0; k < ends.size(); ++k)
     if (!placed[k]) grid.insert(ends[k], static_cast<int>(k));
   for (std::size_t k = 0; k < ends.size(); ++k) {
     if (placed[k]) continue;
     std::vector<int> members;
     grid.near(ends[k], [&](int id) {
-      if (!placed[id] && (ends[id] - ends[k]).norm() <= 0.5 * len.mu) members.push_back(id);
+      if (!placed[id] && (ends[id] - ends[k]).norm() <= 0.5 * budget) members.push_back(id);
     });
     std::sort(members.begin(), members.end());
     Vec2 sum = Vec2::Zero();

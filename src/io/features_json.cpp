@@ -31,9 +31,13 @@ void add_features_json(const features::Features& f, nlohmann::ordered_json& j) {
     segments.push_back(
         {{"a", {s.a.x(), s.a.y()}}, {"b", {s.b.x(), s.b.y()}}, {"curve", s.curve}, {"t", {s.t0, s.t1}}});
   j["segments"] = std::move(segments);
-  ordered_json points = ordered_json::array();
-  for (const features::IsolatedPoint& p : f.points) points.push_back({p.p.x(), p.p.y()});
+  ordered_json points = ordered_json::array(), point_sources = ordered_json::array();
+  for (const features::IsolatedPoint& p : f.points) {
+    points.push_back({p.p.x(), p.p.y()});
+    point_sources.push_back(p.source);
+  }
   j["feature_points"] = std::move(points);
+  j["feature_point_sources"] = std::move(point_sources);
   const features::Lengths& l = f.lengths;
   j["parameters"] = {{"d", l.d},          {"mu", l.mu},
                      {"epsilon", l.epsilon}, {"eps_m", l.eps_m},

@@ -3,7 +3,7 @@
 //   "sections": [{"curve": i, "t": [t0, t1], "p": [8 numbers], "kind": "primary"|"secondary",
 //                 "straight": bool, "polyline": [[x, y], ...], "ts": [...]}],
 //   "segments": [{"a": [x, y], "b": [x, y], "curve": i, "t": [t0, t1]}],   (secondary, simplified)
-//   "feature_points": [[x, y]],
+//   "feature_points": [[x, y]], "feature_point_sources": [i],   (i indexes "sources")
 //   "parameters": {"d", "mu", "epsilon", "eps_m", "l", "l_m", "alpha_deg", "junction_angle_deg"},
 //   "counts": {...}
 #include <nlohmann/json.hpp>

@@ -68,11 +68,26 @@ with tempfile.TemporaryDirectory() as tmp:
             check(f"{example} bbox", len(data["bbox"]) == 4 and data["bbox"][0] <= data["bbox"][2], data["bbox"])
             check(f"{example} drawing", open(drawing).read().startswith("<?xml"))
 
+    # Feature processing: the keys later stages read, and its parameters checked.
+    out = os.path.join(tmp, "processed.json")
+    r = run("features", os.path.join(examples, "open-curves.svg"), "-o", out, "--processed", "--svg", out + ".svg")
+    check("processed exit 0", r.returncode == 0, r.stderr)
+    if r.returncode == 0:
+        data = json.load(open(out))
+        for key in ("sections", "segments", "feature_points", "parameters"):
+            check(f"processed has {key}", key in data, list(data))
+        s = data["sections"][0]
+        check("section keys", {"curve", "t", "p", "kind", "polyline"} <= set(s) and s["kind"] in ("primary", "secondary"), s)
+    r = run("features", os.path.join(examples, "open-curves.svg"), "-o", out, "--processed", "--epsilon", "1e-4")
+    check("epsilon below mu exit 2", r.returncode == 2 and "--epsilon" in r.stderr, r.stderr)
+    r = run("features", os.path.join(examples, "open-curves.svg"), "-o", out, "--processed", "--mu", "-1")
+    check("negative mu exit 2", r.returncode == 2, r.stderr)
+
     # Deterministic: the same input gives the same bytes.
     a, b = os.path.join(tmp, "a.json"), os.path.join(tmp, "b.json")
     ex = os.path.join(examples, "transforms-and-use.svg")
-    run("features", ex, "-o", a)
-    run("features", ex, "-o", b)
+    run("features", ex, "-o", a, "--processed")
+    run("features", ex, "-o", b, "--processed")
     check("deterministic output", open(a, "rb").read() == open(b, "rb").read())
 
     # Bad input: exit 1, one line naming the file, no output file.
