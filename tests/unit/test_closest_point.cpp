@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <random>
+#include <vector>
 
 #include "geometry/closest_point.hpp"
 
@@ -10,24 +12,25 @@ using namespace curvemesh::geometry;
 
 namespace {
 
-// Dense sampling, then golden-section refinement around the best sample: an upper bound on the
-// true distance that is independent of the code under test.
+// Dense sampling, then golden-section refinement around every sampled local minimum: an upper
+// bound on the true distance that is independent of the code under test.
 double brute_force_distance(const CubicBezier& c, const Vec2& p) {
-  constexpr int n = 20000;
-  int best = 0;
-  double best_d = INFINITY;
-  for (int i = 0; i <= n; ++i) {
-    const double d = (c.eval(double(i) / n) - p).norm();
-    if (d < best_d) best_d = d, best = i;
-  }
-  double lo = std::max(0.0, (best - 1.0) / n), hi = std::min(1.0, (best + 1.0) / n);
+  constexpr int n = 4000;
+  std::vector<double> d(n + 1);
+  for (int i = 0; i <= n; ++i) d[i] = (c.eval(double(i) / n) - p).norm();
+  double best = *std::min_element(d.begin(), d.end());
   const double g = (std::sqrt(5.0) - 1) / 2;
-  for (int it = 0; it < 100; ++it) {
-    const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
-    if ((c.eval(a) - p).norm() < (c.eval(b) - p).norm()) hi = b;
-    else lo = a;
+  for (int i = 0; i <= n; ++i) {
+    if ((i > 0 && d[i] > d[i - 1]) || (i < n && d[i] > d[i + 1])) continue;
+    double lo = std::max(0.0, (i - 1.0) / n), hi = std::min(1.0, (i + 1.0) / n);
+    for (int it = 0; it < 60; ++it) {
+      const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+      if ((c.eval(a) - p).norm() < (c.eval(b) - p).norm()) hi = b;
+      else lo = a;
+    }
+    best = std::min(best, (c.eval(0.5 * (lo + hi)) - p).norm());
   }
-  return std::min(best_d, (c.eval(0.5 * (lo + hi)) - p).norm());
+  return best;
 }
 
 }  // namespace
