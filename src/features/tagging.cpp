@@ -13,6 +13,7 @@
 #include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -68,20 +69,21 @@ static bool in_conflict(const Discretized& d, int i, int j, const Lengths& len) 
     if (gap <= 0.5 * std::numbers::pi * len.mu) return false;
   }
   // A shared endpoint: allowed when the pieces leave it at a wide enough angle.
-  const Vec2* shared = nullptr;
-  Vec2 p_other, q_other;
+  const std::array<std::pair<Vec2, Vec2>, 2> p_ends{{{p.a, p.b}, {p.b, p.a}}};  // (end, other end)
+  const std::array<std::pair<Vec2, Vec2>, 2> q_ends{{{q.a, q.b}, {q.b, q.a}}};
+  Vec2 shared = Vec2::Zero(), p_other = Vec2::Zero(), q_other = Vec2::Zero();
   int shared_count = 0;
-  for (const auto& [pe, po] : {std::pair{p.a, p.b}, std::pair{p.b, p.a}})
-    for (const auto& [qe, qo] : {std::pair{q.a, q.b}, std::pair{q.b, q.a}})
+  for (const auto& [pe, po] : p_ends)
+    for (const auto& [qe, qo] : q_ends)
       if (pe == qe) {
         ++shared_count;
-        shared = &pe;
+        shared = pe;
         p_other = po;
         q_other = qo;
       }
   if (shared_count == 1) {
     // Pieces are chords: two chords that share an endpoint meet nowhere else.
-    const Vec2 u = p_other - *shared, v = q_other - *shared;
+    const Vec2 u = p_other - shared, v = q_other - shared;
     if (u.norm() == 0 || v.norm() == 0) return true;
     return angle_between(u, v) < len.junction_angle_rad;
   }
