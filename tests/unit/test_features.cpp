@@ -44,7 +44,7 @@ std::string drawing(const std::string& body) {
 }  // namespace
 
 TEST(Features, ResamplingConditionsHoldByDenseSampling) {
-  const auto soup = svg::read_svg_file(std::string(CURVEMESH_TEST_DATA) + "/../../examples/open-curves.svg");
+  const auto soup = svg::read_svg_file(std::string(CURVEMESH_EXAMPLES) + "/open-curves.svg");
   const auto f = features::process(soup);
   const auto& L = f.lengths;
   int edges = 0;
