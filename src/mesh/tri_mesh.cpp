@@ -1,0 +1,201 @@
+#include "mesh/tri_mesh.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+namespace curvemesh::mesh {
+
+int TriMesh::add_vertex(const Vec2& p, const VertexTag& tag) {
+  points_.push_back(p);
+  vertex_tags_.push_back(tag);
+  exact_index_.push_back(-1);
+  vertex_triangles_.emplace_back();
+  return vertex_count() - 1;
+}
+
+int TriMesh::add_triangle(int a, int b, int c) {
+  const int t = triangle_slots();
+  triangles_.push_back({a, b, c});
+  for (int v : {a, b, c}) vertex_triangles_[v].push_back(t);
+  ++alive_triangles_;
+  return t;
+}
+
+void TriMesh::remove_triangle(int t) {
+  if (!alive(t)) return;
+  for (int v : triangles_[t]) {
+    auto& list = vertex_triangles_[v];
+    list.erase(std::find(list.begin(), list.end(), t));
+  }
+  triangles_[t] = {-1, -1, -1};
+  --alive_triangles_;
+}
+
+void TriMesh::set_position(int v, const Vec2& p) {
+  points_[v] = p;
+  exact_index_[v] = -1;
+}
+
+void TriMesh::set_exact_position(int v, const ExactPoint& p) {
+  points_[v] = geometry::nearest_double(p);
+  exact_index_[v] = static_cast<int>(exact_points_.size());
+  exact_points_.push_back(p);
+}
+
+ExactPoint TriMesh::exact_or_double(int v) const { return has_exact(v) ? exact(v) : ExactPoint(points_[v]); }
+
+int TriMesh::exact_vertex_count() const {
+  return static_cast<int>(std::count_if(exact_index_.begin(), exact_index_.end(), [](int i) { return i >= 0; }));
+}
+
+void TriMesh::set_feature(int a, int b, const EdgeFeature& f) { features_[edge_key(a, b)] = f; }
+void TriMesh::clear_feature(int a, int b) { features_.erase(edge_key(a, b)); }
+
+const EdgeFeature* TriMesh::feature(int a, int b) const {
+  const auto it = features_.find(edge_key(a, b));
+  return it == features_.end() ? nullptr : &it->second;
+}
+
+std::vector<std::pair<std::array<int, 2>, EdgeFeature>> TriMesh::sorted_features() const {
+  std::vector<std::pair<std::array<int, 2>, EdgeFeature>> out;
+  out.reserve(features_.size());
+  for (const auto& [key, f] : features_)
+    out.push_back({{static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu)}, f});
+  std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  return out;
+}
+
+std::vector<int> TriMesh::edge_triangles(int a, int b) const {
+  std::vector<int> out;
+  for (int t : vertex_triangles_[a]) {
+    const auto& tri = triangles_[t];
+    if (tri[0] == b || tri[1] == b || tri[2] == b) out.push_back(t);
+  }
+  return out;
+}
+
+std::vector<int> TriMesh::neighbours(int v) const {
+  std::vector<int> out;
+  for (int t : vertex_triangles_[v])
+    for (int w : triangles_[t])
+      if (w != v) out.push_back(w);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+int TriMesh::orientation(int a, int b, int c) const {
+  if (!has_exact(a) && !has_exact(b) && !has_exact(c)) return geometry::orientation(points_[a], points_[b], points_[c]);
+  return geometry::orientation(exact_or_double(a), exact_or_double(b), exact_or_double(c));
+}
+
+int TriMesh::orientation(int t) const {
+  const auto& tri = triangles_[t];
+  return orientation(tri[0], tri[1], tri[2]);
+}
+
+int TriMesh::orientation_with(int a, int b, int c, int moved, const Vec2& p) const {
+  const auto exact_at = [&](int v) { return v == moved ? ExactPoint(p) : exact_or_double(v); };
+  const auto inexact = [&](int v) { return v != moved && has_exact(v); };
+  if (!inexact(a) && !inexact(b) && !inexact(c)) {
+    const auto at = [&](int v) -> const Vec2& { return v == moved ? p : points_[v]; };
+    return geometry::orientation(at(a), at(b), at(c));
+  }
+  return geometry::orientation(exact_at(a), exact_at(b), exact_at(c));
+}
+
+std::vector<int> TriMesh::compact() {
+  const int n = vertex_count();
+  std::vector<int> remap(n, -1);
+  int next = 0;
+  for (int v = 0; v < n; ++v)
+    if (!vertex_triangles_[v].empty() || vertex_tags_[v].isolated) remap[v] = next++;
+
+  std::vector<Vec2> points(next);
+  std::vector<VertexTag> tags(next);
+  std::vector<int> exact_index(next, -1);
+  std::vector<ExactPoint> exact_points;
+  for (int v = 0; v < n; ++v) {
+    const int w = remap[v];
+    if (w < 0) continue;
+    points[w] = points_[v];
+    tags[w] = vertex_tags_[v];
+    if (exact_index_[v] >= 0) {
+      exact_index[w] = static_cast<int>(exact_points.size());
+      exact_points.push_back(exact_points_[exact_index_[v]]);
+    }
+  }
+  std::vector<Triangle> triangles;
+  triangles.reserve(alive_triangles_);
+  for (const auto& tri : triangles_)
+    if (tri[0] >= 0) triangles.push_back({remap[tri[0]], remap[tri[1]], remap[tri[2]]});
+  std::unordered_map<std::uint64_t, EdgeFeature> features;
+  features.reserve(features_.size());
+  for (const auto& [key, f] : features_) {
+    const int a = remap[key >> 32], b = remap[key & 0xffffffffu];
+    if (a < 0 || b < 0) continue;
+    EdgeFeature g = f;
+    if ((a < b) != (static_cast<int>(key >> 32) < static_cast<int>(key & 0xffffffffu))) std::swap(g.t_lo, g.t_hi);
+    features[edge_key(a, b)] = g;
+  }
+
+  points_ = std::move(points);
+  vertex_tags_ = std::move(tags);
+  exact_index_ = std::move(exact_index);
+  exact_points_ = std::move(exact_points);
+  triangles_ = std::move(triangles);
+  features_ = std::move(features);
+  vertex_triangles_.assign(next, {});
+  for (int t = 0; t < triangle_slots(); ++t)
+    for (int v : triangles_[t]) vertex_triangles_[v].push_back(t);
+  alive_triangles_ = triangle_slots();
+  // Shrink the incidence lists: removed elements must not keep their memory.
+  for (auto& list : vertex_triangles_) list.shrink_to_fit();
+  return remap;
+}
+
+std::optional<std::string> TriMesh::structure_error() const {
+  std::ostringstream err;
+  int alive_count = 0;
+  for (int t = 0; t < triangle_slots(); ++t) {
+    if (!alive(t)) continue;
+    ++alive_count;
+    const auto& tri = triangles_[t];
+    for (int i = 0; i < 3; ++i) {
+      const int v = tri[i];
+      if (v < 0 || v >= vertex_count() || v == tri[(i + 1) % 3]) {
+        err << "triangle " << t << " has a bad vertex " << v;
+        return err.str();
+      }
+      const auto& list = vertex_triangles_[v];
+      if (std::find(list.begin(), list.end(), t) == list.end()) {
+        err << "vertex " << v << " does not list its triangle " << t;
+        return err.str();
+      }
+    }
+    if (orientation(t) <= 0) {
+      err << "triangle " << t << " (" << tri[0] << ", " << tri[1] << ", " << tri[2] << ") is "
+          << (orientation(t) == 0 ? "degenerate" : "inverted");
+      return err.str();
+    }
+  }
+  if (alive_count != alive_triangles_) return std::string("alive-triangle count is stale");
+  for (int v = 0; v < vertex_count(); ++v)
+    for (int t : vertex_triangles_[v]) {
+      const auto& tri = triangles_[t];
+      if (!alive(t) || (tri[0] != v && tri[1] != v && tri[2] != v)) {
+        err << "vertex " << v << " lists triangle " << t << " that does not use it";
+        return err.str();
+      }
+    }
+  for (const auto& [key, f] : features_) {
+    const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
+    if (a >= vertex_count() || b >= vertex_count() || edge_triangles(a, b).empty()) {
+      err << "tagged edge (" << a << ", " << b << ") is not in the mesh";
+      return err.str();
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace curvemesh::mesh

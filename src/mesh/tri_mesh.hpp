@@ -1,0 +1,125 @@
+#pragma once
+// The triangle mesh every stage after features works on: flat index arrays (geogram style),
+// vertex-to-triangle incidence, and tags saying what each vertex and edge lies on.
+//
+// Coordinates are doubles, except for vertices created by intersecting input segments whose
+// rational position could not be rounded without inverting a triangle: those keep an exact
+// position (§4.1, the hybrid kernel of TetWild) until an operation moves them to doubles.
+// Orientation is always decided exactly on the coordinates as stored.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "geometry/predicates.hpp"
+#include "geometry/vec2.hpp"
+
+namespace curvemesh::mesh {
+
+using geometry::ExactPoint;
+using geometry::Vec2;
+
+enum class EdgeKind : std::uint8_t { interior, primary, secondary, boundary };
+
+// What a tagged edge lies on. Interior edges have no entry.
+struct EdgeFeature {
+  EdgeKind kind = EdgeKind::interior;
+  // primary: the soup curve; secondary: the soup curve the input segment approximates (-1 when
+  // the input had no curves, e.g. a .poly file); boundary: -1.
+  int curve = -1;
+  // primary: index of the features section; secondary: index of the input secondary segment;
+  // boundary: the box side (0 bottom, 1 right, 2 top, 3 left).
+  int source = -1;
+  // primary: the curve parameters at the edge's lower- and higher-numbered vertex.
+  double t_lo = 0, t_hi = 0;
+};
+
+enum class VertexKind : std::uint8_t {
+  free,       // no tagged edge: moves in the plane
+  secondary,  // on secondary edges only: moves in the plane while they stay in the ε-envelope
+  primary,    // on one primary curve (inside a section): moves only along the curve (App. A)
+  boundary,   // on one side of the box: moves only along it
+  fixed,      // box corner, curve or section end, isolated point, crossing of features: stays
+};
+
+struct VertexTag {
+  VertexKind kind = VertexKind::free;
+  int curve = -1;         // primary: the soup curve the vertex is attached to
+  double t = 0;           // primary: its parameter on that curve
+  int side = -1;          // boundary: the box side
+  bool on_curve = true;   // primary: false while it sits on the chord, before projection (Fig. 8)
+  bool isolated = false;  // an isolated input point: never removed
+};
+
+using Triangle = std::array<int, 3>;  // counter-clockwise
+
+inline std::uint64_t edge_key(int a, int b) {
+  const auto lo = static_cast<std::uint32_t>(a < b ? a : b), hi = static_cast<std::uint32_t>(a < b ? b : a);
+  return (std::uint64_t{lo} << 32) | hi;
+}
+
+class TriMesh {
+ public:
+  // --- building ---
+  int add_vertex(const Vec2& p, const VertexTag& tag = {});
+  // Adds a triangle; the caller guarantees counter-clockwise order.
+  int add_triangle(int a, int b, int c);
+  void remove_triangle(int t);  // marks it dead; `compact` reclaims it
+  void set_position(int v, const Vec2& p);  // also drops an exact position
+  void set_exact_position(int v, const ExactPoint& p);  // keeps `point(v)` as its nearest double
+  void set_tag(int v, const VertexTag& tag) { vertex_tags_[v] = tag; }
+  void set_feature(int a, int b, const EdgeFeature& f);
+  void clear_feature(int a, int b);
+
+  // --- reading ---
+  int vertex_count() const { return static_cast<int>(points_.size()); }
+  int triangle_slots() const { return static_cast<int>(triangles_.size()); }  // dead ones included
+  int triangle_count() const { return alive_triangles_; }
+  const Vec2& point(int v) const { return points_[v]; }
+  const VertexTag& tag(int v) const { return vertex_tags_[v]; }
+  bool has_exact(int v) const { return exact_index_[v] >= 0; }
+  const ExactPoint& exact(int v) const { return exact_points_[exact_index_[v]]; }
+  // The vertex position as a rational (exact if it has one, else its double, which is rational).
+  ExactPoint exact_or_double(int v) const;
+  int exact_vertex_count() const;
+  const Triangle& triangle(int t) const { return triangles_[t]; }
+  bool alive(int t) const { return triangles_[t][0] >= 0; }
+  const std::vector<int>& triangles_of(int v) const { return vertex_triangles_[v]; }
+  const EdgeFeature* feature(int a, int b) const;
+  const std::unordered_map<std::uint64_t, EdgeFeature>& features() const { return features_; }
+  // The tagged edges sorted by (lower, higher) vertex: a deterministic order for output.
+  std::vector<std::pair<std::array<int, 2>, EdgeFeature>> sorted_features() const;
+  // Alive triangles containing edge (a, b): one on the box, two inside.
+  std::vector<int> edge_triangles(int a, int b) const;
+  // The vertices joined to v by an edge, in increasing order.
+  std::vector<int> neighbours(int v) const;
+  // Exact orientation of a triangle with the coordinates as stored (+1 means valid).
+  int orientation(int t) const;
+  int orientation(int a, int b, int c) const;
+  // Same, with vertex `moved` placed at `p` (a double position) instead.
+  int orientation_with(int a, int b, int c, int moved, const Vec2& p) const;
+
+  // Removes dead triangles and vertices no triangle uses (except isolated points, which cannot be
+  // unused in a valid mesh); renumbers everything. Returns the old-to-new vertex map (-1 = removed).
+  std::vector<int> compact();
+
+  // Checks the structural invariants: incidence lists match triangles, every triangle is
+  // counter-clockwise (exact), every tagged edge exists. Returns a description of the first
+  // violation, or nothing.
+  std::optional<std::string> structure_error() const;
+
+ private:
+  std::vector<Vec2> points_;
+  std::vector<VertexTag> vertex_tags_;
+  std::vector<int> exact_index_;  // into exact_points_, -1 when the double is the position
+  std::vector<ExactPoint> exact_points_;
+  std::vector<Triangle> triangles_;
+  std::vector<std::vector<int>> vertex_triangles_;
+  std::unordered_map<std::uint64_t, EdgeFeature> features_;
+  int alive_triangles_ = 0;
+};
+
+}  // namespace curvemesh::mesh
