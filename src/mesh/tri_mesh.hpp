@@ -47,8 +47,8 @@ enum class VertexKind : std::uint8_t {
 
 struct VertexTag {
   VertexKind kind = VertexKind::free;
-  int curve = -1;         // primary: the soup curve the vertex is attached to
-  double t = 0;           // primary: its parameter on that curve
+  int section = -1;       // primary: the features section (one curve, one interval) it lies on
+  double t = 0;           // primary: its parameter on the section's soup curve
   int side = -1;          // boundary: the box side
   bool on_curve = true;   // primary: false while it sits on the chord, before projection (Fig. 8)
   bool isolated = false;  // an isolated input point: never removed
