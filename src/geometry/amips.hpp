@@ -1,0 +1,39 @@
+#pragma once
+// The conformal AMIPS energy of a triangle (TetWild; TriWild App. A) and what smoothing needs of
+// it: derivatives with respect to one vertex, and their restriction to a curve through it.
+//
+// With J = [b - a, c - a] W⁻¹, W the equilateral reference [[1, 1/2], [0, √3/2]],
+// E = ‖J‖²_F / det J. E = 2 for every equilateral triangle and grows without bound as the triangle
+// flattens; it does not depend on size, position or rotation. Counter-clockwise is valid: E = +∞
+// when det J <= 0.
+#include <Eigen/Core>
+
+#include "geometry/vec2.hpp"
+
+namespace curvemesh::geometry {
+
+double amips(const Vec2& a, const Vec2& b, const Vec2& c);
+
+struct AmipsDerivatives {
+  double energy = 0;
+  Vec2 gradient = Vec2::Zero();                       // dE/da
+  Eigen::Matrix2d hessian = Eigen::Matrix2d::Zero();  // d²E/da²
+  AmipsDerivatives& operator+=(const AmipsDerivatives& o);
+};
+
+// Energy, gradient and Hessian with respect to the first vertex a (b and c fixed), analytic.
+// For det J <= 0: energy +∞, gradient and Hessian zero.
+AmipsDerivatives amips_derivatives(const Vec2& a, const Vec2& b, const Vec2& c);
+
+// The smallest interior angle in radians (0 for a degenerate triangle; either orientation).
+double min_angle(const Vec2& a, const Vec2& b, const Vec2& c);
+
+// A summed star energy restricted to a curve c(t) through the vertex (App. A): with g and H the
+// gradient and Hessian at the vertex, dc = c'(t), ddc = c''(t):
+// first = g·dc, second = dcᵀ H dc + g·ddc.
+struct CurveDerivatives {
+  double energy = 0, first = 0, second = 0;
+};
+CurveDerivatives along_curve(const AmipsDerivatives& summed, const Vec2& dc, const Vec2& ddc);
+
+}  // namespace curvemesh::geometry

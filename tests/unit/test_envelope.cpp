@@ -1,0 +1,153 @@
+// The ε-envelope test: exact cases at the border, and the property that matters — it never
+// accepts a segment with a point farther than ε from the input, checked by brute force.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "geometry/envelope.hpp"
+
+namespace curvemesh::geometry {
+namespace {
+
+// Brute-force distance in long double, independent of the code under test.
+long double distance_ld(const Vec2& p, const std::array<Vec2, 2>& s) {
+  const long double ax = s[0].x(), ay = s[0].y(), bx = s[1].x(), by = s[1].y(), px = p.x(), py = p.y();
+  const long double dx = bx - ax, dy = by - ay, len2 = dx * dx + dy * dy;
+  long double t = len2 > 0 ? ((px - ax) * dx + (py - ay) * dy) / len2 : 0;
+  t = std::clamp(t, 0.0L, 1.0L);
+  const long double ex = px - (ax + t * dx), ey = py - (ay + t * dy);
+  return std::sqrt(ex * ex + ey * ey);
+}
+
+long double distance_to_union(const Vec2& p, const std::vector<std::array<Vec2, 2>>& segments) {
+  long double d = INFINITY;
+  for (const auto& s : segments) d = std::min(d, distance_ld(p, s));
+  return d;
+}
+
+TEST(Envelope, PointsAtTheBorder) {
+  const SegmentEnvelope env({{Vec2(0, 0), Vec2(1, 0)}}, 0.01);
+  EXPECT_TRUE(env.contains(Vec2(0.5, 0.009)));
+  EXPECT_FALSE(env.contains(Vec2(0.5, 0.011)));
+  EXPECT_TRUE(env.contains(Vec2(-0.009, 0)));   // around the end: a disc
+  EXPECT_FALSE(env.contains(Vec2(-0.008, 0.008)));
+  EXPECT_EQ(env.size(), 1u);
+  EXPECT_EQ(env.epsilon(), 0.01);
+}
+
+TEST(Envelope, ParallelSegments) {
+  const SegmentEnvelope env({{Vec2(0, 0), Vec2(1, 0)}}, 0.01);
+  EXPECT_TRUE(env.contains(Vec2(0.1, 0.005), Vec2(0.9, 0.005)));
+  EXPECT_FALSE(env.contains(Vec2(0.1, 0.0101), Vec2(0.9, 0.0101)));
+  EXPECT_FALSE(env.contains(Vec2(0.1, 0.005), Vec2(0.9, 0.02)));  // ends inside, leaves on the way
+  EXPECT_FALSE(env.contains(Vec2(0.5, 0), Vec2(1.2, 0)));
+}
+
+TEST(Envelope, ChordAcrossAPolylineCorner) {
+  // Two segments meeting at a right angle at (1, 0).
+  const SegmentEnvelope env({{Vec2(0, 0), Vec2(1, 0)}, {Vec2(1, 0), Vec2(1, 1)}}, 0.01);
+  // Cutting the corner within ε: inside, though no single capsule holds it.
+  EXPECT_TRUE(env.contains(Vec2(0.99, 0), Vec2(1, 0.01 - 0.0005)));
+  EXPECT_TRUE(env.contains(Vec2(0.5, 0.003), Vec2(1.003, 0.5)) == false);  // the chord is far off at the corner
+  EXPECT_TRUE(env.contains(Vec2(0.5, 0), Vec2(1.005, 0.004)));
+  // Along both sides through the corner, slightly outside the corner: inside by bisection.
+  EXPECT_TRUE(env.contains(Vec2(0.9, 0.002), Vec2(1.002, 0.002)) && env.contains(Vec2(1.002, 0.002), Vec2(1.002, 0.9)));
+}
+
+TEST(Envelope, EmptyAndZeroLength) {
+  const SegmentEnvelope empty;
+  EXPECT_FALSE(empty.contains(Vec2(0, 0)));
+  EXPECT_FALSE(empty.contains(Vec2(0, 0), Vec2(0, 0)));
+  const SegmentEnvelope none({}, 0.1);
+  EXPECT_FALSE(none.contains(Vec2(0, 0)));
+  const SegmentEnvelope dot({{Vec2(2, 2), Vec2(2, 2)}}, 0.1);
+  EXPECT_TRUE(dot.contains(Vec2(2.05, 2), Vec2(2, 2.05)));
+  EXPECT_FALSE(dot.contains(Vec2(2.11, 2)));
+}
+
+TEST(Envelope, CopiesAnswerTheSame) {
+  const SegmentEnvelope env({{Vec2(0, 0), Vec2(1, 0)}, {Vec2(0, 1), Vec2(1, 1)}}, 0.05);
+  const SegmentEnvelope copy = env;
+  SegmentEnvelope moved;
+  moved = SegmentEnvelope(env);
+  for (double y : {0.0, 0.04, 0.06, 0.97, 1.2}) {
+    EXPECT_EQ(copy.contains(Vec2(0.5, y)), env.contains(Vec2(0.5, y)));
+    EXPECT_EQ(moved.contains(Vec2(0.5, y)), env.contains(Vec2(0.5, y)));
+  }
+}
+
+// The certificate: whatever is accepted is inside, checked densely in higher precision.
+TEST(Envelope, NeverAcceptsASegmentThatLeaves) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1), n(-1, 1);
+  int accepted = 0, queries = 0;
+  for (int round = 0; round < 200; ++round) {
+    const double eps = 0.005 + 0.03 * u(rng);
+    std::vector<std::array<Vec2, 2>> segs;
+    Vec2 p(u(rng), u(rng));
+    const int count = 1 + round % 12;
+    for (int k = 0; k < count; ++k) {  // a random polyline, sometimes with jumps
+      const Vec2 q = (k % 5 == 4) ? Vec2(u(rng), u(rng)) : Vec2(p + 0.2 * Vec2(n(rng), n(rng)));
+      segs.push_back({p, q});
+      p = q;
+    }
+    const SegmentEnvelope env(segs, eps);
+    for (int k = 0; k < 50; ++k) {
+      // Queries near the input: ends jittered around points of the segments.
+      const auto& s1 = segs[rng() % segs.size()];
+      const auto& s2 = segs[rng() % segs.size()];
+      const Vec2 a = s1[0] + u(rng) * (s1[1] - s1[0]) + 1.5 * eps * Vec2(n(rng), n(rng));
+      const Vec2 b = s2[0] + u(rng) * (s2[1] - s2[0]) + 1.5 * eps * Vec2(n(rng), n(rng));
+      ++queries;
+      if (!env.contains(a, b)) continue;
+      ++accepted;
+      for (int i = 0; i <= 1000; ++i) {
+        const Vec2 x = a + (i / 1000.0) * (b - a);
+        ASSERT_LE(distance_to_union(x, segs), eps) << "accepted a segment that leaves the envelope";
+      }
+    }
+  }
+  EXPECT_GT(accepted, queries / 20);  // the test does exercise acceptance
+}
+
+TEST(Envelope, SubSegmentsOfTheInputAreAlwaysAccepted) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<std::array<Vec2, 2>> segs;
+  for (int k = 0; k < 2000; ++k) {
+    const Vec2 a(u(rng), u(rng));
+    segs.push_back({a, a + 0.05 * Vec2(u(rng) - 0.5, u(rng) - 0.5)});
+  }
+  const SegmentEnvelope env(segs, 1e-3);
+  for (const auto& s : segs) {
+    const double t0 = 0.3 * u(rng), t1 = 1 - 0.3 * u(rng);
+    EXPECT_TRUE(env.contains(s[0] + t0 * (s[1] - s[0]), s[0] + t1 * (s[1] - s[0])));
+    EXPECT_TRUE(env.contains(s[0], s[1]));
+  }
+}
+
+TEST(Envelope, ScaledCopiesGiveTheSameAnswers) {
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<std::array<Vec2, 2>> segs;
+  for (int k = 0; k < 50; ++k) segs.push_back({Vec2(u(rng), u(rng)), Vec2(u(rng), u(rng))});
+  std::vector<std::array<Vec2, 2>> queries;
+  for (int k = 0; k < 500; ++k) {
+    const auto& s = segs[k % segs.size()];
+    queries.push_back({s[0] + 0.01 * Vec2(u(rng) - 0.5, u(rng) - 0.5), s[0] + u(rng) * (s[1] - s[0])});
+  }
+  const SegmentEnvelope base(segs, 0.004);
+  for (double scale : {1e-6, 1e6}) {
+    std::vector<std::array<Vec2, 2>> scaled;
+    for (const auto& s : segs) scaled.push_back({s[0] * scale, s[1] * scale});
+    const SegmentEnvelope env(scaled, 0.004 * scale);
+    int differ = 0;
+    for (const auto& q : queries) differ += env.contains(q[0] * scale, q[1] * scale) != base.contains(q[0], q[1]);
+    EXPECT_EQ(differ, 0) << scale;
+  }
+}
+
+}  // namespace
+}  // namespace curvemesh::geometry
