@@ -31,6 +31,15 @@ void TriMesh::remove_triangle(int t) {
   --alive_triangles_;
 }
 
+void TriMesh::set_triangle(int t, const Triangle& corners) {
+  for (int v : triangles_[t]) {
+    auto& list = vertex_triangles_[v];
+    list.erase(std::find(list.begin(), list.end(), t));
+  }
+  triangles_[t] = corners;
+  for (int v : corners) vertex_triangles_[v].push_back(t);
+}
+
 void TriMesh::set_position(int v, const Vec2& p) {
   points_[v] = p;
   exact_index_[v] = -1;

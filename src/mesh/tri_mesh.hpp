@@ -35,6 +35,7 @@ struct EdgeFeature {
   int source = -1;
   // primary: the curve parameters at the edge's lower- and higher-numbered vertex.
   double t_lo = 0, t_hi = 0;
+  bool operator==(const EdgeFeature&) const = default;
 };
 
 enum class VertexKind : std::uint8_t {
@@ -52,6 +53,7 @@ struct VertexTag {
   int side = -1;          // boundary: the box side
   bool on_curve = true;   // primary: false while it sits on the chord, before projection (Fig. 8)
   bool isolated = false;  // an isolated input point: never removed
+  bool operator==(const VertexTag&) const = default;
 };
 
 using Triangle = std::array<int, 3>;  // counter-clockwise
@@ -68,6 +70,8 @@ class TriMesh {
   // Adds a triangle; the caller guarantees counter-clockwise order.
   int add_triangle(int a, int b, int c);
   void remove_triangle(int t);  // marks it dead; `compact` reclaims it
+  // Replaces the corners of an alive triangle (counter-clockwise), updating incidence.
+  void set_triangle(int t, const Triangle& corners);
   void set_position(int v, const Vec2& p);  // also drops an exact position
   void set_exact_position(int v, const ExactPoint& p);  // keeps `point(v)` as its nearest double
   void set_tag(int v, const VertexTag& tag) { vertex_tags_[v] = tag; }

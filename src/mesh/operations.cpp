@@ -1,0 +1,450 @@
+#include "mesh/operations.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "geometry/amips.hpp"
+#include "geometry/bezier_analysis.hpp"
+#include "geometry/closest_point.hpp"
+
+namespace curvemesh::mesh {
+
+double SectionCurve::turning(double ta, double tb) const {
+  const double lo = std::min(ta, tb), hi = std::max(ta, tb);
+  return geometry::turning_angle(piece, std::clamp(local(lo), 0.0, 1.0), std::clamp(local(hi), 0.0, 1.0));
+}
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Floating-point slack on the turning bound: the features stage measured the same turning.
+constexpr double kTurningSlack = 1e-9;
+
+// Orientation of (x, y, p) for a point p that is not (yet) a vertex; exact.
+int orientation_new(const TriMesh& m, int x, int y, const Vec2& p) {
+  if (!m.has_exact(x) && !m.has_exact(y)) return geometry::orientation(m.point(x), m.point(y), p);
+  return geometry::orientation(m.exact_or_double(x), m.exact_or_double(y), ExactPoint(p));
+}
+
+// The parameter a primary edge (a, b) stores at its endpoint x (x is a or b).
+double param_at(const EdgeFeature& f, int a, int b, int x) { return x == std::min(a, b) ? f.t_lo : f.t_hi; }
+
+void set_param_at(EdgeFeature& f, int a, int b, int x, double t) { (x == std::min(a, b) ? f.t_lo : f.t_hi) = t; }
+
+EdgeFeature primary_edge(const EdgeFeature& like, int a, double ta, int b, double tb) {
+  EdgeFeature f = like;
+  f.t_lo = a < b ? ta : tb;
+  f.t_hi = a < b ? tb : ta;
+  return f;
+}
+
+// The corner after x in triangle tri, counter-clockwise.
+int next_corner(const Triangle& tri, int x) { return tri[0] == x ? tri[1] : tri[1] == x ? tri[2] : tri[0]; }
+int prev_corner(const Triangle& tri, int x) { return tri[0] == x ? tri[2] : tri[1] == x ? tri[0] : tri[1]; }
+
+// The triangle with directed edge a -> b (counter-clockwise), and its third corner; -1 if none.
+std::pair<int, int> triangle_left_of(const TriMesh& m, int a, int b) {
+  for (int t : m.triangles_of(a))
+    if (next_corner(m.triangle(t), a) == b) return {t, prev_corner(m.triangle(t), a)};
+  return {-1, -1};
+}
+
+double max_amips_of(const TriMesh& m, const std::vector<int>& triangles) {
+  double e = 0;
+  for (int t : triangles) {
+    const auto& tri = m.triangle(t);
+    e = std::max(e, geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])));
+  }
+  return e;
+}
+
+bool secondary_edges_inside(const TriMesh& m, const Constraints& c, int v, const Vec2& p) {
+  for (int x : m.neighbours(v)) {
+    const EdgeFeature* f = m.feature(v, x);
+    if (f && f->kind == EdgeKind::secondary && !c.envelope.contains(p, m.point(x))) return false;
+  }
+  return true;
+}
+
+// Would moving v to p keep all its triangles counter-clockwise?
+bool star_valid_at(const TriMesh& m, int v, const Vec2& p) {
+  for (int t : m.triangles_of(v)) {
+    const auto& tri = m.triangle(t);
+    if (m.orientation_with(tri[0], tri[1], tri[2], v, p) <= 0) return false;
+  }
+  return true;
+}
+
+// The summed AMIPS energy of v's triangles with v at p (infinite if one is not positive in doubles).
+double star_energy(const TriMesh& m, int v, const Vec2& p) {
+  double e = 0;
+  for (int t : m.triangles_of(v)) {
+    const auto& tri = m.triangle(t);
+    e += geometry::amips(p, m.point(next_corner(tri, v)), m.point(prev_corner(tri, v)));
+  }
+  return e;
+}
+
+geometry::AmipsDerivatives star_derivatives(const TriMesh& m, int v, const Vec2& p) {
+  geometry::AmipsDerivatives sum;
+  for (int t : m.triangles_of(v)) {
+    const auto& tri = m.triangle(t);
+    const auto d = geometry::amips_derivatives(p, m.point(next_corner(tri, v)), m.point(prev_corner(tri, v)));
+    sum.energy += d.energy;
+    sum.gradient += d.gradient;
+    sum.hessian += d.hessian;
+  }
+  return sum;
+}
+
+// The two primary edges of a primary vertex: the neighbours along its section and their params.
+struct CurveNeighbours {
+  int x = -1, y = -1;
+  double tx = 0, ty = 0;
+};
+bool curve_neighbours(const TriMesh& m, int v, CurveNeighbours& out) {
+  const VertexTag& tag = m.tag(v);
+  int found = 0;
+  for (int w : m.neighbours(v)) {
+    const EdgeFeature* f = m.feature(v, w);
+    if (!f || f->kind != EdgeKind::primary || f->source != tag.section) continue;
+    if (found == 0) out.x = w, out.tx = param_at(*f, v, w, w);
+    else if (found == 1) out.y = w, out.ty = param_at(*f, v, w, w);
+    ++found;
+  }
+  return found == 2;
+}
+
+// Moves a primary vertex to parameter t (on the curve) if every invariant allows it.
+bool try_curve_move(TriMesh& m, const Constraints& c, int v, const CurveNeighbours& n, double t) {
+  const SectionCurve& curve = c.sections[m.tag(v).section];
+  const Vec2 p = curve.eval(t);
+  if (!p.allFinite()) return false;
+  if (curve.turning(n.tx, t) > c.max_turning + kTurningSlack) return false;
+  if (curve.turning(t, n.ty) > c.max_turning + kTurningSlack) return false;
+  if (!star_valid_at(m, v, p) || !secondary_edges_inside(m, c, v, p)) return false;
+  m.set_position(v, p);
+  VertexTag tag = m.tag(v);
+  tag.t = t;
+  tag.on_curve = true;
+  m.set_tag(v, tag);
+  for (int w : {n.x, n.y}) {
+    EdgeFeature f = *m.feature(v, w);
+    set_param_at(f, v, w, v, t);
+    m.set_feature(v, w, f);
+  }
+  return true;
+}
+
+// The neighbours of a boundary vertex along its side.
+bool side_neighbours(const TriMesh& m, int v, int& x, int& y) {
+  x = y = -1;
+  for (int w : m.neighbours(v)) {
+    const EdgeFeature* f = m.feature(v, w);
+    if (!f || f->kind != EdgeKind::boundary) continue;
+    (x < 0 ? x : y) = w;
+  }
+  return x >= 0 && y >= 0;
+}
+
+}  // namespace
+
+int split_edge(TriMesh& m, const Constraints& c, int a, int b) {
+  const auto [t1, cc] = triangle_left_of(m, a, b);
+  const auto [t2, d] = triangle_left_of(m, b, a);
+  if (t1 < 0 && t2 < 0) return -1;
+  const EdgeFeature* found = m.feature(a, b);
+  const EdgeFeature f = found ? *found : EdgeFeature{};
+
+  const auto valid = [&](const Vec2& p) {
+    if (!p.allFinite()) return false;
+    if (t1 >= 0 && (orientation_new(m, cc, a, p) <= 0 || orientation_new(m, b, cc, p) <= 0)) return false;
+    if (t2 >= 0 && (orientation_new(m, d, b, p) <= 0 || orientation_new(m, a, d, p) <= 0)) return false;
+    return true;
+  };
+
+  Vec2 p = 0.5 * (m.point(a) + m.point(b));
+  VertexTag tag;
+  double ta = 0, tb = 0, tm = 0;
+  switch (f.kind) {
+    case EdgeKind::primary: {
+      // §4.1: the new vertex goes to the middle of the curve's parameter interval if it can.
+      ta = param_at(f, a, b, a);
+      tb = param_at(f, a, b, b);
+      tm = 0.5 * (ta + tb);
+      tag.kind = VertexKind::primary;
+      tag.section = f.source;
+      tag.t = tm;
+      const Vec2 on_curve = c.sections[f.source].eval(tm);
+      tag.on_curve = valid(on_curve);
+      if (tag.on_curve) p = on_curve;
+      break;
+    }
+    case EdgeKind::secondary:
+      tag.kind = VertexKind::secondary;
+      break;
+    case EdgeKind::boundary:
+      tag.kind = VertexKind::boundary;
+      tag.side = f.source;
+      break;
+    case EdgeKind::interior:
+      break;
+  }
+  if (!valid(p)) return -1;
+  if (f.kind == EdgeKind::secondary && !(c.envelope.contains(m.point(a), p) && c.envelope.contains(p, m.point(b))))
+    return -1;
+
+  const int mid = m.add_vertex(p, tag);
+  if (t1 >= 0) {
+    m.set_triangle(t1, {a, mid, cc});
+    m.add_triangle(mid, b, cc);
+  }
+  if (t2 >= 0) {
+    m.set_triangle(t2, {b, mid, d});
+    m.add_triangle(mid, a, d);
+  }
+  if (found) {
+    m.clear_feature(a, b);
+    if (f.kind == EdgeKind::primary) {
+      m.set_feature(a, mid, primary_edge(f, a, ta, mid, tm));
+      m.set_feature(mid, b, primary_edge(f, mid, tm, b, tb));
+    } else {
+      m.set_feature(a, mid, f);
+      m.set_feature(mid, b, f);
+    }
+  }
+  return mid;
+}
+
+bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double energy_bound) {
+  const VertexTag& tag = m.tag(from);
+  if (tag.kind == VertexKind::fixed || tag.isolated || m.has_exact(from)) return false;
+  const EdgeFeature* edge = m.feature(from, to);
+  switch (tag.kind) {
+    case VertexKind::primary:
+      if (!edge || edge->kind != EdgeKind::primary || edge->source != tag.section) return false;
+      break;
+    case VertexKind::boundary:
+      if (!edge || edge->kind != EdgeKind::boundary || edge->source != tag.side) return false;
+      break;
+    case VertexKind::secondary:
+      if (edge && edge->kind != EdgeKind::secondary) return false;
+      break;
+    default:
+      if (edge) return false;
+  }
+
+  const std::vector<int> star = m.triangles_of(from);
+  std::vector<int> removed, kept, opposite;
+  for (int t : star) {
+    const auto& tri = m.triangle(t);
+    if (tri[0] == to || tri[1] == to || tri[2] == to) {
+      removed.push_back(t);
+      opposite.push_back(tri[0] != from && tri[0] != to ? tri[0] : tri[1] != from && tri[1] != to ? tri[1] : tri[2]);
+    } else {
+      kept.push_back(t);
+    }
+  }
+  if (removed.empty()) return false;
+  // Link condition: the common neighbours of the edge's ends are exactly the opposite corners.
+  {
+    const auto nf = m.neighbours(from), nt = m.neighbours(to);
+    std::vector<int> common;
+    std::set_intersection(nf.begin(), nf.end(), nt.begin(), nt.end(), std::back_inserter(common));
+    std::sort(opposite.begin(), opposite.end());
+    if (common != opposite) return false;
+  }
+
+  // Tagged edges of `from` move to `to`.
+  struct Moved {
+    int x;
+    EdgeFeature f;
+  };
+  std::vector<Moved> moved;
+  for (int x : m.neighbours(from)) {
+    if (x == to) continue;
+    const EdgeFeature* g = m.feature(from, x);
+    if (!g) continue;
+    if (m.feature(to, x)) return false;  // two tagged edges would merge into one
+    EdgeFeature h = *g;
+    if (g->kind == EdgeKind::secondary && !c.envelope.contains(m.point(to), m.point(x))) return false;
+    if (g->kind == EdgeKind::primary) {
+      if (!edge || edge->kind != EdgeKind::primary || edge->source != g->source) return false;
+      const double tx = param_at(*g, from, x, x), tt = param_at(*edge, from, to, to);
+      if (c.sections[g->source].turning(tx, tt) > c.max_turning + kTurningSlack) return false;
+      h = primary_edge(*g, x, tx, to, tt);
+    }
+    moved.push_back({x, h});
+  }
+
+  // Orientation (exact) and energy of the triangles that stay, with `from` replaced by `to`.
+  double before = max_amips_of(m, star), after = 0;
+  std::vector<Triangle> replaced;
+  replaced.reserve(kept.size());
+  for (int t : kept) {
+    Triangle tri = m.triangle(t);
+    for (int& v : tri)
+      if (v == from) v = to;
+    if (m.orientation(tri[0], tri[1], tri[2]) <= 0) return false;
+    after = std::max(after, geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])));
+    replaced.push_back(tri);
+  }
+  if (after > std::max(before, energy_bound)) return false;
+
+  for (int t : removed) m.remove_triangle(t);
+  for (std::size_t i = 0; i < kept.size(); ++i) m.set_triangle(kept[i], replaced[i]);
+  if (edge) m.clear_feature(from, to);
+  bool gained_secondary = false;
+  for (const Moved& mv : moved) {
+    m.clear_feature(from, mv.x);
+    m.set_feature(to, mv.x, mv.f);
+    gained_secondary |= mv.f.kind == EdgeKind::secondary;
+  }
+  if (gained_secondary && m.tag(to).kind == VertexKind::free) {
+    VertexTag t = m.tag(to);
+    t.kind = VertexKind::secondary;
+    m.set_tag(to, t);
+  }
+  return true;
+}
+
+bool swap_edge(TriMesh& m, int a, int b) {
+  if (m.feature(a, b)) return false;
+  const auto [t1, cc] = triangle_left_of(m, a, b);
+  const auto [t2, d] = triangle_left_of(m, b, a);
+  if (t1 < 0 || t2 < 0 || cc == d) return false;
+  for (int t : m.triangles_of(cc)) {
+    const auto& tri = m.triangle(t);
+    if (tri[0] == d || tri[1] == d || tri[2] == d) return false;  // edge (c, d) exists already
+  }
+  // Quad a, d, b, c counter-clockwise; the new diagonal is c–d.
+  const Triangle n1{a, d, cc}, n2{d, b, cc};
+  if (m.orientation(n1[0], n1[1], n1[2]) <= 0 || m.orientation(n2[0], n2[1], n2[2]) <= 0) return false;
+  const double before = max_amips_of(m, {t1, t2});
+  const double after = std::max(geometry::amips(m.point(a), m.point(d), m.point(cc)),
+                                geometry::amips(m.point(d), m.point(b), m.point(cc)));
+  if (!(after < before)) return false;
+  m.set_triangle(t1, n1);
+  m.set_triangle(t2, n2);
+  return true;
+}
+
+bool smooth_vertex(TriMesh& m, const Constraints& c, int v) {
+  const VertexTag tag = m.tag(v);
+  if (tag.kind == VertexKind::fixed || m.has_exact(v) || m.triangles_of(v).empty()) return false;
+  const Vec2 x0 = m.point(v);
+  const double e0 = star_energy(m, v, x0);
+  if (!std::isfinite(e0)) return false;
+  const auto d = star_derivatives(m, v, x0);
+
+  if (tag.kind == VertexKind::primary) {
+    if (!tag.on_curve) return false;  // projection moves it first
+    CurveNeighbours n;
+    if (!curve_neighbours(m, v, n)) return false;
+    const SectionCurve& curve = c.sections[tag.section];
+    const auto g = geometry::along_curve(d, curve.derivative(tag.t), curve.second_derivative(tag.t));
+    const double lo = std::min(n.tx, n.ty), hi = std::max(n.tx, n.ty), margin = 1e-3 * (hi - lo);
+    double dt = g.second > 0 ? -g.first / g.second : (g.first > 0 ? -0.25 : 0.25) * (hi - lo);
+    for (int k = 0; k < 10; ++k, dt *= 0.5) {
+      const double t = std::clamp(tag.t + dt, lo + margin, hi - margin);
+      if (t == tag.t) return false;
+      if (!(star_energy(m, v, curve.eval(t)) < e0)) continue;
+      if (try_curve_move(m, c, v, n, t)) return true;
+    }
+    return false;
+  }
+
+  Vec2 step;
+  if (tag.kind == VertexKind::boundary) {
+    int x = -1, y = -1;
+    if (!side_neighbours(m, v, x, y)) return false;
+    const int axis = (tag.side == 0 || tag.side == 2) ? 0 : 1;
+    const double h = d.hessian(axis, axis), gr = d.gradient[axis];
+    const double reach = std::abs(m.point(x)[axis] - m.point(y)[axis]);
+    step = Vec2::Zero();
+    step[axis] = h > 0 ? -gr / h : (gr > 0 ? -0.25 : 0.25) * reach;
+    const double lo = std::min(m.point(x)[axis], m.point(y)[axis]), hi = std::max(m.point(x)[axis], m.point(y)[axis]);
+    for (int k = 0; k < 10; ++k, step *= 0.5) {
+      Vec2 p = x0;
+      p[axis] = std::clamp(x0[axis] + step[axis], lo + 1e-3 * reach, hi - 1e-3 * reach);
+      if (p == x0) return false;
+      if (!(star_energy(m, v, p) < e0) || !star_valid_at(m, v, p) || !secondary_edges_inside(m, c, v, p)) continue;
+      m.set_position(v, p);
+      return true;
+    }
+    return false;
+  }
+
+  // Free and secondary vertices: Newton in the plane; a Hessian that is not positive definite is
+  // shifted until it is.
+  Eigen::Matrix2d h = d.hessian;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(h);
+  const double smallest = eig.eigenvalues()[0], largest = eig.eigenvalues()[1];
+  if (!(smallest > 1e-12 * std::max(1.0, std::abs(largest))))
+    h += Eigen::Matrix2d::Identity() * (std::abs(smallest) + 1e-6 * std::max(1.0, std::abs(largest)));
+  step = -h.ldlt().solve(d.gradient);
+  if (!step.allFinite()) return false;
+  for (int k = 0; k < 12; ++k, step *= 0.5) {
+    const Vec2 p = x0 + step;
+    if (p == x0) return false;
+    if (!(star_energy(m, v, p) < e0) || !star_valid_at(m, v, p) || !secondary_edges_inside(m, c, v, p)) continue;
+    m.set_position(v, p);
+    return true;
+  }
+  return false;
+}
+
+bool project_vertex(TriMesh& m, const Constraints& c, int v) {
+  const VertexTag tag = m.tag(v);
+  if (tag.kind != VertexKind::primary || tag.on_curve || m.has_exact(v)) return false;
+  CurveNeighbours n;
+  if (!curve_neighbours(m, v, n)) return false;
+  const SectionCurve& curve = c.sections[tag.section];
+  const double lo = std::min(n.tx, n.ty), hi = std::max(n.tx, n.ty), margin = 1e-3 * (hi - lo);
+  const geometry::ClosestPoint cp = geometry::closest_point(curve.piece, m.point(v));
+  const double t = std::clamp(curve.t0 + cp.t * (curve.t1 - curve.t0), lo + margin, hi - margin);
+  if (try_curve_move(m, c, v, n, t)) return true;
+  // Fig. 8: get as close as the neighbourhood allows now; smoothing of the others makes room.
+  const Vec2 x0 = m.point(v), target = curve.eval(t);
+  for (double lambda : {0.5, 0.25, 0.125}) {
+    const Vec2 p = x0 + lambda * (target - x0);
+    if (p == x0) break;
+    if (star_valid_at(m, v, p) && secondary_edges_inside(m, c, v, p)) {
+      m.set_position(v, p);
+      return true;
+    }
+  }
+  return false;
+}
+
+bool round_vertex(TriMesh& m, const Constraints& c, int v) {
+  if (!m.has_exact(v)) return true;
+  const Vec2 nearest = geometry::nearest_double(m.exact(v));
+  Vec2 centre = Vec2::Zero();
+  const auto ring = m.neighbours(v);
+  for (int w : ring) centre += m.point(w);
+  if (!ring.empty()) centre /= static_cast<double>(ring.size());
+  // The nearest double first, then points ever further towards the centre of the star (a tiny
+  // move: 2^-40 of the way first).
+  for (int k = 0; k <= 30; k += 2) {
+    const Vec2 p = k == 0 ? nearest : Vec2(nearest + std::ldexp(1.0, k - 42) * (centre - nearest));
+    if (star_valid_at(m, v, p) && secondary_edges_inside(m, c, v, p)) {
+      m.set_position(v, p);
+      return true;
+    }
+  }
+  return false;
+}
+
+bool edge_satisfies_invariants(const TriMesh& m, const Constraints& c, int a, int b) {
+  const EdgeFeature* f = m.feature(a, b);
+  if (!f) return true;
+  if (f->kind == EdgeKind::secondary) return c.envelope.contains(m.point(a), m.point(b));
+  if (f->kind == EdgeKind::primary)
+    return c.sections[f->source].turning(f->t_lo, f->t_hi) <= c.max_turning + kTurningSlack;
+  return true;
+}
+
+}  // namespace curvemesh::mesh

@@ -1,0 +1,46 @@
+#pragma once
+// The local operations of §4.1 (TetWild's, in 2D) as proposals: each builds the new local
+// configuration, checks every invariant on it, and only then changes the mesh. A rejected
+// operation leaves the mesh exactly as it was.
+//
+// Invariants checked on every proposal:
+//  1. no triangle is inverted or degenerate (exact orientation on the coordinates as stored);
+//  2. every secondary edge stays inside the ε-envelope of the secondary input (certified test);
+//  3. every primary edge covers a curve interval turning at most α;
+//  4. primary vertices move only along their curve, boundary vertices only along their side,
+//     fixed vertices never move and are never removed.
+#include "mesh/constraints.hpp"
+#include "mesh/tri_mesh.hpp"
+
+namespace curvemesh::mesh {
+
+// Splits edge (a, b) at its middle — for a primary edge at the curve's mid-parameter when that
+// inverts nothing, else at the chord's middle (then the vertex waits for projection). Returns the
+// new vertex, or -1 when rejected.
+int split_edge(TriMesh& mesh, const Constraints& constraints, int a, int b);
+
+// Moves vertex `from` onto `to` and removes it. Accepted only if the largest AMIPS energy of the
+// new triangles is at most max(largest before, energy_bound). §4.1: curve endpoints never move.
+bool collapse_edge(TriMesh& mesh, const Constraints& constraints, int from, int to, double energy_bound);
+
+// Replaces the diagonal (a, b) of the quad formed by its two triangles by the other diagonal,
+// if the largest AMIPS energy of the two triangles decreases. Tagged edges never swap.
+bool swap_edge(TriMesh& mesh, int a, int b);
+
+// One Newton step (with line search) on the summed AMIPS energy of v's triangles: in the plane
+// for free and secondary vertices, along the curve for primary ones (App. A), along the side
+// for boundary ones. Returns true if v moved.
+bool smooth_vertex(TriMesh& mesh, const Constraints& constraints, int v);
+
+// Fig. 8: moves a primary vertex that is not yet on its curve towards its closest point on the
+// curve, as far as the invariants allow; it never moves away. Returns true if it moved.
+bool project_vertex(TriMesh& mesh, const Constraints& constraints, int v);
+
+// Gives a vertex with an exact (rational) position a double position: its nearest double, or,
+// if that inverts a triangle, a point slightly towards the centre of its star. Returns success.
+bool round_vertex(TriMesh& mesh, const Constraints& constraints, int v);
+
+// Invariants 2 and 3 for one tagged edge as the mesh stores it (used by tests and `check`).
+bool edge_satisfies_invariants(const TriMesh& mesh, const Constraints& constraints, int a, int b);
+
+}  // namespace curvemesh::mesh
