@@ -1,0 +1,18 @@
+#include "triangulate/constraints.hpp"
+
+namespace curvemesh::triangulate {
+
+mesh::Constraints constraints_of(const features::Features& features, const geometry::Box2& box) {
+  mesh::Constraints c;
+  c.sections.reserve(features.sections.size());
+  for (const features::Section& s : features.sections) c.sections.push_back({s.piece, s.t0, s.t1});
+  std::vector<std::array<geometry::Vec2, 2>> segments;
+  segments.reserve(features.segments.size());
+  for (const features::Segment& s : features.segments) segments.push_back({s.a, s.b});
+  c.envelope = geometry::SegmentEnvelope(std::move(segments), features.lengths.epsilon);
+  c.box = box;
+  c.max_turning = features.lengths.alpha_rad;
+  return c;
+}
+
+}  // namespace curvemesh::triangulate

@@ -1,0 +1,39 @@
+#pragma once
+// §4.1, first half: an exact constrained triangulation of the outer box and every feature.
+//
+// The box, the primary polylines (one constraint per polyline edge), the secondary segments and
+// the isolated points go into CGAL's constrained Delaunay triangulation with the exact-constructions
+// kernel, which computes every crossing exactly. Each resulting edge is tagged with what it lies on
+// (primary beats secondary beats box when inputs overlap), each vertex with how it may move later.
+// Vertices whose exact position rounds to doubles without inverting a triangle are rounded; the
+// others keep their rational position until the optimizer can round them (TetWild's hybrid kernel).
+// Never fails on finite input.
+#include "features/features.hpp"
+#include "mesh/tri_mesh.hpp"
+
+namespace curvemesh::triangulate {
+
+struct Options {
+  // The outer box is the input's bounding box grown on every side by this fraction of its
+  // diagonal d, so that features never touch the box and the domain around them is meshed too.
+  double box_margin_rel = 0.05;
+};
+
+struct Stats {
+  int input_constraints = 0;  // constraints inserted (polyline edges, segments, box sides)
+  int vertices = 0;
+  int triangles = 0;
+  int crossing_vertices = 0;  // vertices created by intersecting input constraints
+  int exact_vertices = 0;     // of those, the ones that could not be rounded to doubles yet
+  double seconds = 0;
+};
+
+struct Result {
+  mesh::TriMesh mesh;
+  geometry::Box2 box;  // the outer box (sides: 0 y = min, 1 x = max, 2 y = max, 3 x = min)
+  Stats stats;
+};
+
+Result triangulate(const features::Features& features, const Options& options = {});
+
+}  // namespace curvemesh::triangulate

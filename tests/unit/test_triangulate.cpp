@@ -1,0 +1,311 @@
+// The exact constrained triangulation on hand-made and nasty inputs. Validity is checked here with
+// GMP rationals on the stored coordinates (not through the mesh's own predicate): every triangle
+// counter-clockwise, the triangles tile the box exactly, every input segment is covered by tagged
+// edges lying on it.
+#include <gtest/gtest.h>
+#include <gmpxx.h>
+
+#include <cmath>
+#include <map>
+#include <random>
+
+#include "features/options.hpp"
+#include "triangulate/triangulate.hpp"
+
+namespace curvemesh::triangulate {
+namespace {
+
+using geometry::ExactPoint;
+using geometry::Vec2;
+
+mpq_class cross(const ExactPoint& a, const ExactPoint& b, const ExactPoint& c) {
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+features::Features make_features(const std::vector<std::array<Vec2, 2>>& segments, const std::vector<Vec2>& points = {}) {
+  features::Features f;
+  for (const auto& s : segments) {
+    f.segments.push_back({s[0], s[1], -1, 0, 1});
+    f.box.add(s[0]);
+    f.box.add(s[1]);
+  }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    f.points.push_back({points[i], int(i)});
+    f.box.add(points[i]);
+  }
+  f.lengths = features::resolve({}, f.box.diagonal());
+  return f;
+}
+
+// Every structural and geometric property the stage promises, checked independently.
+void expect_valid(const Result& r, const features::Features& f) {
+  const mesh::TriMesh& m = r.mesh;
+  ASSERT_FALSE(m.structure_error()) << *m.structure_error();
+  mpq_class area = 0;
+  for (int t = 0; t < m.triangle_slots(); ++t) {
+    if (!m.alive(t)) continue;
+    const auto& tri = m.triangle(t);
+    const mpq_class a = cross(m.exact_or_double(tri[0]), m.exact_or_double(tri[1]), m.exact_or_double(tri[2]));
+    ASSERT_GT(sgn(a), 0) << "triangle " << t << " is not counter-clockwise";
+    area += a;
+  }
+  // The triangles tile the box: their doubled areas add up to the box's, exactly.
+  const ExactPoint lo(r.box.min), hi(r.box.max);
+  EXPECT_EQ(area, 2 * (hi.x - lo.x) * (hi.y - lo.y));
+  // Every secondary input segment is covered by the edges tagged with it, which lie on it
+  // (up to the rounding of crossing vertices: one unit in the last place of the coordinates).
+  std::map<int, double> covered;
+  for (const auto& [e, feature] : m.sorted_features()) {
+    if (feature.kind != mesh::EdgeKind::secondary) continue;
+    const features::Segment& s = f.segments[feature.source];
+    const Vec2 p = m.point(e[0]), q = m.point(e[1]);
+    const Vec2 dir = (s.b - s.a).normalized();
+    const double tol = 4e-16 * r.box.diagonal();
+    for (const Vec2& x : {p, q}) {
+      const Vec2 d = x - s.a;
+      EXPECT_LE(std::abs(d.x() * dir.y() - d.y() * dir.x()), tol);
+    }
+    covered[feature.source] += (q - p).norm();
+  }
+  for (std::size_t k = 0; k < f.segments.size(); ++k) {
+    const double len = (f.segments[k].b - f.segments[k].a).norm();
+    if (len == 0) continue;
+    // An overlapped part may be tagged with an earlier segment; never more than the segment.
+    EXPECT_LE(covered[int(k)], len * (1 + 1e-12) + 1e-300);
+  }
+  EXPECT_EQ(r.stats.exact_vertices, m.exact_vertex_count());
+  EXPECT_EQ(r.stats.triangles, m.triangle_count());
+}
+
+TEST(Triangulate, CrossingSegmentsMeetAtOneExactVertex) {
+  const auto f = make_features({{Vec2(0, 0), Vec2(1, 1)}, {Vec2(0, 1), Vec2(1, 0)}});
+  const Result r = triangulate(f);
+  expect_valid(r, f);
+  EXPECT_EQ(r.mesh.vertex_count(), 4 + 4 + 1);
+  EXPECT_EQ(r.stats.crossing_vertices, 1);
+  int at_centre = 0;
+  for (int v = 0; v < r.mesh.vertex_count(); ++v)
+    if (r.mesh.point(v) == Vec2(0.5, 0.5)) {
+      ++at_centre;
+      EXPECT_EQ(r.mesh.neighbours(v).size(), 4u);
+    }
+  EXPECT_EQ(at_centre, 1);
+  // Four secondary sub-edges and the box sides.
+  int secondary = 0, boundary = 0;
+  for (const auto& [e, feature] : r.mesh.sorted_features()) {
+    secondary += feature.kind == mesh::EdgeKind::secondary;
+    boundary += feature.kind == mesh::EdgeKind::boundary;
+  }
+  EXPECT_EQ(secondary, 4);
+  EXPECT_EQ(boundary, 4);  // the box sides, which nothing touches
+}
+
+TEST(Triangulate, BoxHasTheDocumentedMargin) {
+  const auto f = make_features({{Vec2(0, 0), Vec2(3, 4)}});
+  Options o;
+  o.box_margin_rel = 0.1;
+  const Result r = triangulate(f, o);
+  expect_valid(r, f);
+  EXPECT_DOUBLE_EQ(r.box.min.x(), -0.5);
+  EXPECT_DOUBLE_EQ(r.box.max.y(), 4.5);
+}
+
+TEST(Triangulate, ManySegmentsThroughOnePoint) {
+  std::vector<std::array<Vec2, 2>> star;
+  for (int k = 0; k < 60; ++k) {
+    const double a = 2 * M_PI * k / 120;  // diameters: they all cross near the origin
+    star.push_back({Vec2(std::cos(a), std::sin(a)), Vec2(-std::cos(a), -std::sin(a))});
+  }
+  const auto f = make_features(star);
+  const Result r = triangulate(f);
+  expect_valid(r, f);
+  EXPECT_GT(r.stats.crossing_vertices, 0);
+}
+
+TEST(Triangulate, OverlappingCollinearSegments) {
+  const auto f = make_features({{Vec2(0, 0), Vec2(1, 0)},
+                                {Vec2(0.25, 0), Vec2(0.75, 0)},
+                                {Vec2(0.5, 0), Vec2(2, 0)},
+                                {Vec2(2, 0), Vec2(0, 0)}});  // the whole run again, reversed
+  const Result r = triangulate(f);
+  expect_valid(r, f);
+  // The union [0, 2] is tagged exactly once, split at 0.25, 0.5, 0.75, 1.
+  double tagged = 0;
+  int pieces = 0;
+  for (const auto& [e, feature] : r.mesh.sorted_features())
+    if (feature.kind == mesh::EdgeKind::secondary) {
+      tagged += (r.mesh.point(e[1]) - r.mesh.point(e[0])).norm();
+      ++pieces;
+    }
+  EXPECT_DOUBLE_EQ(tagged, 2.0);
+  EXPECT_EQ(pieces, 5);
+}
+
+TEST(Triangulate, SegmentsShorterThan1e12OfTheDiagonal) {
+  const auto f = make_features({{Vec2(0, 0), Vec2(1, 1)},
+                                {Vec2(0.5, 0.5), Vec2(0.5 + 1e-13, 0.5)},
+                                {Vec2(0.2, 0.7), Vec2(0.2, 0.7 + 1e-13)},
+                                {Vec2(0.3, 0.3), Vec2(0.3, 0.3)}});
+  const Result r = triangulate(f);
+  expect_valid(r, f);
+}
+
+TEST(Triangulate, PointsOnSegmentsSplitThem) {
+  const auto f = make_features({{Vec2(0, 0), Vec2(1, 0)}, {Vec2(0, 0), Vec2(1, 1)}}, {Vec2(0.5, 0), Vec2(0.25, 0.25), Vec2(0.5, 0.7)});
+  const Result r = triangulate(f);
+  expect_valid(r, f);
+  int isolated = 0;
+  for (int v = 0; v < r.mesh.vertex_count(); ++v)
+    if (r.mesh.tag(v).isolated) {
+      ++isolated;
+      EXPECT_EQ(r.mesh.tag(v).kind, mesh::VertexKind::fixed);
+    }
+  EXPECT_EQ(isolated, 3);
+  int secondary = 0;
+  for (const auto& [e, feature] : r.mesh.sorted_features()) secondary += feature.kind == mesh::EdgeKind::secondary;
+  EXPECT_EQ(secondary, 4);
+}
+
+// Scaling the input by a power of two changes no rounding: the same mesh, scaled.
+TEST(Triangulate, ScaledCopiesGiveTheSameMesh) {
+  std::vector<std::array<Vec2, 2>> base;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int k = 0; k < 40; ++k) base.push_back({Vec2(u(rng), u(rng)), Vec2(u(rng), u(rng))});
+  const Result r0 = triangulate(make_features(base));
+  for (double scale : {std::ldexp(1.0, -20), std::ldexp(1.0, 20), 1e-6, 1e6}) {
+    std::vector<std::array<Vec2, 2>> scaled;
+    for (const auto& s : base) scaled.push_back({s[0] * scale, s[1] * scale});
+    const auto f = make_features(scaled);
+    const Result r = triangulate(f);
+    expect_valid(r, f);
+    EXPECT_EQ(r.mesh.vertex_count(), r0.mesh.vertex_count()) << scale;
+    EXPECT_EQ(r.mesh.triangle_count(), r0.mesh.triangle_count()) << scale;
+    if (std::log2(scale) == std::round(std::log2(scale))) {
+      for (int v = 0; v < r.mesh.vertex_count(); ++v) EXPECT_EQ(r.mesh.point(v), r0.mesh.point(v) * scale);
+    }
+  }
+}
+
+// Many nearly parallel segments cross in a cluster of points closer than a double's spacing:
+// some crossings cannot be rounded yet. Those keep exact positions, and only those.
+TEST(Triangulate, UnroundableCrossingsKeepExactPositions) {
+  std::vector<std::array<Vec2, 2>> fan;
+  for (int k = 0; k < 12; ++k)
+    fan.push_back({Vec2(0, 0.1 + k * 1e-17), Vec2(1, 0.1 + (12 - k) * 3e-17 + 1e-16 * (k % 3))});
+  fan.push_back({Vec2(0.5, 0), Vec2(0.5 + 1e-16, 1)});
+  const auto f = make_features(fan);
+  const Result r = triangulate(f);
+  expect_valid(r, f);
+  EXPECT_GT(r.stats.crossing_vertices, 0);
+  EXPECT_GT(r.stats.exact_vertices, 0);  // the case this test is about does arise
+  for (int v = 0; v < r.mesh.vertex_count(); ++v) {
+    if (!r.mesh.has_exact(v)) continue;
+    // Kept exact only because its nearest double inverts or flattens an incident triangle.
+    const Vec2 p = geometry::nearest_double(r.mesh.exact(v));
+    bool inverts = false;
+    for (int t : r.mesh.triangles_of(v)) {
+      const auto& tri = r.mesh.triangle(t);
+      ExactPoint c[3];
+      for (int i = 0; i < 3; ++i) c[i] = tri[i] == v ? ExactPoint(p) : r.mesh.exact_or_double(tri[i]);
+      inverts |= sgn(cross(c[0], c[1], c[2])) <= 0;
+    }
+    EXPECT_TRUE(inverts) << "vertex " << v << " could have been rounded";
+  }
+}
+
+TEST(Triangulate, PrimarySectionsTagVerticesWithTheirParameter) {
+  features::Features f;
+  features::Section s;
+  s.curve = 3;
+  s.t0 = 0;
+  s.t1 = 1;
+  s.piece = geometry::CubicBezier(Vec2(0, 0), Vec2(0.3, 0.4), Vec2(0.7, 0.4), Vec2(1, 0));
+  for (int i = 0; i <= 6; ++i) {
+    s.ts.push_back(i / 6.0);
+    s.polyline.push_back(s.piece.eval(i / 6.0));
+  }
+  f.sections.push_back(s);
+  // A secondary segment crossing the polyline edge between vertices 1 and 2.
+  const Vec2 mid = 0.5 * (s.polyline[1] + s.polyline[2]);
+  f.segments.push_back({mid + Vec2(0.05, -0.2), mid + Vec2(-0.05, 0.2), 8, 0, 1});
+  for (const Vec2& p : s.polyline) f.box.add(p);
+  f.box.add(f.segments[0].a);
+  f.box.add(f.segments[0].b);
+  f.lengths = features::resolve({}, f.box.diagonal());
+  const Result r = triangulate(f);
+  expect_valid(r, f);
+  const mesh::TriMesh& m = r.mesh;
+  int primary_vertices = 0, ends = 0;
+  for (int v = 0; v < m.vertex_count(); ++v) {
+    for (int i = 0; i <= 6; ++i)
+      if (m.point(v) == s.polyline[i]) {
+        if (i == 0 || i == 6) {
+          EXPECT_EQ(m.tag(v).kind, mesh::VertexKind::fixed);
+          ++ends;
+        } else {
+          EXPECT_EQ(m.tag(v).kind, mesh::VertexKind::primary);
+          EXPECT_EQ(m.tag(v).section, 0);
+          EXPECT_EQ(m.tag(v).t, s.ts[i]);
+          EXPECT_TRUE(m.tag(v).on_curve);
+          ++primary_vertices;
+        }
+      }
+  }
+  EXPECT_EQ(primary_vertices, 5);
+  EXPECT_EQ(ends, 2);
+  // Seven primary sub-edges (six polyline edges, one split by the crossing); their parameter
+  // intervals tile [0, 1] and increase along the curve.
+  std::vector<std::pair<double, double>> intervals;
+  for (const auto& [e, feature] : m.sorted_features())
+    if (feature.kind == mesh::EdgeKind::primary) {
+      EXPECT_EQ(feature.curve, 3);
+      EXPECT_EQ(feature.source, 0);
+      intervals.push_back(std::minmax(feature.t_lo, feature.t_hi));
+    }
+  ASSERT_EQ(intervals.size(), 7u);
+  std::sort(intervals.begin(), intervals.end());
+  EXPECT_EQ(intervals.front().first, 0.0);
+  EXPECT_EQ(intervals.back().second, 1.0);
+  for (std::size_t i = 0; i + 1 < intervals.size(); ++i) EXPECT_EQ(intervals[i].second, intervals[i + 1].first);
+  // The crossing vertex lies on two features: it is fixed.
+  int crossings = 0;
+  for (int v = 0; v < m.vertex_count(); ++v)
+    if (m.neighbours(v).size() >= 4 && m.tag(v).kind == mesh::VertexKind::fixed && !m.tag(v).isolated) {
+      bool on_both = false;
+      for (int w : m.neighbours(v))
+        if (const auto* e = m.feature(v, w); e && e->kind == mesh::EdgeKind::secondary) on_both = true;
+      crossings += on_both;
+    }
+  EXPECT_EQ(crossings, 1);
+}
+
+TEST(Triangulate, Deterministic) {
+  std::vector<std::array<Vec2, 2>> segs;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int k = 0; k < 200; ++k) segs.push_back({Vec2(u(rng), u(rng)), Vec2(u(rng), u(rng))});
+  const auto f = make_features(segs);
+  const Result a = triangulate(f), b = triangulate(f);
+  ASSERT_EQ(a.mesh.vertex_count(), b.mesh.vertex_count());
+  ASSERT_EQ(a.mesh.triangle_slots(), b.mesh.triangle_slots());
+  for (int v = 0; v < a.mesh.vertex_count(); ++v) EXPECT_EQ(a.mesh.point(v), b.mesh.point(v));
+  for (int t = 0; t < a.mesh.triangle_slots(); ++t) EXPECT_EQ(a.mesh.triangle(t), b.mesh.triangle(t));
+  EXPECT_EQ(a.mesh.sorted_features().size(), b.mesh.sorted_features().size());
+  expect_valid(a, f);
+}
+
+TEST(Triangulate, EmptyAndSinglePointInputsGiveABox) {
+  features::Features empty;
+  empty.lengths = features::resolve({}, 0);
+  const Result r = triangulate(empty);
+  expect_valid(r, empty);
+  EXPECT_EQ(r.mesh.triangle_count(), 2);
+  const auto one = make_features({}, {Vec2(3, 4)});
+  const Result p = triangulate(one);
+  expect_valid(p, one);
+  EXPECT_EQ(p.mesh.triangle_count(), 4);
+}
+
+}  // namespace
+}  // namespace curvemesh::triangulate
