@@ -1,0 +1,175 @@
+#include "optimize/optimize.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "geometry/amips.hpp"
+#include "mesh/operations.hpp"
+
+namespace curvemesh::optimize {
+
+using mesh::TriMesh;
+using geometry::Vec2;
+
+namespace {
+
+struct Edge {
+  int a, b;
+  double length;
+};
+
+std::vector<Edge> all_edges(const TriMesh& m) {
+  std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(3 * static_cast<std::size_t>(m.triangle_count()));
+  for (int t = 0; t < m.triangle_slots(); ++t) {
+    if (!m.alive(t)) continue;
+    const auto& tri = m.triangle(t);
+    for (int i = 0; i < 3; ++i) pairs.emplace_back(std::min(tri[i], tri[(i + 1) % 3]), std::max(tri[i], tri[(i + 1) % 3]));
+  }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  std::vector<Edge> edges;
+  edges.reserve(pairs.size());
+  for (const auto& [a, b] : pairs) edges.push_back({a, b, (m.point(a) - m.point(b)).norm()});
+  return edges;
+}
+
+bool is_edge(const TriMesh& m, int a, int b) {
+  for (int t : m.triangles_of(a)) {
+    const auto& tri = m.triangle(t);
+    if (tri[0] == b || tri[1] == b || tri[2] == b) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+Quality measure(const TriMesh& m) {
+  Quality q;
+  q.vertices = m.vertex_count();
+  q.triangles = m.triangle_count();
+  double min_angle = std::numbers::pi, max_e = 0, sum_e = 0;
+  for (int t = 0; t < m.triangle_slots(); ++t) {
+    if (!m.alive(t)) continue;
+    const auto& tri = m.triangle(t);
+    const Vec2 &a = m.point(tri[0]), &b = m.point(tri[1]), &c = m.point(tri[2]);
+    min_angle = std::min(min_angle, geometry::min_angle(a, b, c));
+    const double e = geometry::amips(a, b, c);
+    max_e = std::max(max_e, e);
+    sum_e += e;
+  }
+  const auto edges = all_edges(m);
+  double sum_l = 0;
+  for (const Edge& e : edges) sum_l += e.length;
+  q.min_angle_deg = q.triangles ? min_angle * 180 / std::numbers::pi : 0;
+  q.max_amips = max_e;
+  q.mean_amips = q.triangles ? sum_e / q.triangles : 0;
+  q.mean_edge_length = edges.empty() ? 0 : sum_l / static_cast<double>(edges.size());
+  return q;
+}
+
+Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Options& o) {
+  const auto start = std::chrono::steady_clock::now();
+  Stats s;
+  m.compact();
+  s.initial = measure(m);
+  const double target = o.edge_length_rel * diagonal, smallest = o.min_edge_length_rel * diagonal;
+  std::vector<double> size(m.vertex_count(), target);  // adaptive sizing field, per vertex
+  const auto edge_target = [&](int a, int b) { return 0.5 * (size[a] + size[b]); };
+  double best_max = s.initial.max_amips;
+  int stalled = 0;
+
+  for (; s.iterations < o.max_iterations; ++s.iterations) {
+    long changes = 0;
+    // Split long edges, longest first.
+    {
+      auto edges = all_edges(m);
+      std::erase_if(edges, [&](const Edge& e) { return e.length <= 4.0 / 3.0 * edge_target(e.a, e.b); });
+      std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.length > y.length; });
+      for (const Edge& e : edges) {
+        const int v = mesh::split_edge(m, c, e.a, e.b);
+        if (v < 0) continue;
+        size.push_back(edge_target(e.a, e.b));
+        ++s.splits, ++changes;
+      }
+    }
+    // Collapse short edges, shortest first; an edge whose ends changed is looked at again later.
+    {
+      auto edges = all_edges(m);
+      std::erase_if(edges, [&](const Edge& e) { return e.length >= 0.8 * edge_target(e.a, e.b); });
+      std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.length < y.length; });
+      std::vector<char> touched(m.vertex_count(), 0);
+      for (const Edge& e : edges) {
+        if (touched[e.a] || touched[e.b] || !is_edge(m, e.a, e.b)) continue;
+        if (mesh::collapse_edge(m, c, e.a, e.b, o.stop_max_amips) ||
+            mesh::collapse_edge(m, c, e.b, e.a, o.stop_max_amips)) {
+          ++s.collapses, ++changes;
+          touched[e.a] = touched[e.b] = 1;
+        }
+      }
+    }
+    // Swap where it lowers the larger energy of the two triangles.
+    for (const Edge& e : all_edges(m))
+      if (is_edge(m, e.a, e.b) && mesh::swap_edge(m, e.a, e.b)) ++s.swaps, ++changes;
+    // Smooth, project feature vertices onto their curves (Fig. 8), round exact vertices.
+    for (int v = 0; v < m.vertex_count(); ++v) {
+      if (m.triangles_of(v).empty()) continue;
+      if (m.has_exact(v)) {
+        mesh::round_vertex(m, c, v);
+      } else if (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) {
+        if (mesh::project_vertex(m, c, v)) ++s.projections;
+      } else if (mesh::smooth_vertex(m, c, v)) {
+        ++s.smooths;
+      }
+    }
+    // Compact: removed elements do not keep their memory.
+    const auto remap = m.compact();
+    std::vector<double> resized(m.vertex_count(), target);
+    for (std::size_t v = 0; v < remap.size(); ++v)
+      if (remap[v] >= 0) resized[remap[v]] = size[v];
+    size = std::move(resized);
+
+    const Quality q = measure(m);
+    const bool good = q.min_angle_deg >= o.stop_min_angle_deg || q.max_amips <= o.stop_max_amips;
+    // The stop rule of §4.1 applies once the sizes are met: nothing left to split or collapse.
+    if (good && changes == 0) {
+      s.stop_reason = "quality";
+      ++s.iterations;
+      break;
+    }
+    if (q.max_amips < best_max * (1 - 1e-3)) {
+      best_max = q.max_amips;
+      stalled = 0;
+    } else if (++stalled >= 3) {
+      // Adaptive sizing (TetWild): refine around the worst triangles when quality stalls.
+      bool refined = false;
+      for (int t = 0; t < m.triangle_slots(); ++t) {
+        const auto& tri = m.triangle(t);
+        if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) <= o.stop_max_amips) continue;
+        for (int v : tri)
+          if (size[v] > smallest) size[v] = std::max(smallest, 0.5 * size[v]), refined = true;
+      }
+      stalled = 0;
+      if (!refined && changes == 0) {
+        s.stop_reason = "no improvement";
+        ++s.iterations;
+        break;
+      }
+    }
+  }
+  if (s.stop_reason.empty()) s.stop_reason = "iteration limit";
+
+  // Vertices that kept an exact position get one more chance, with the mesh as it is now.
+  for (int v = 0; v < m.vertex_count(); ++v)
+    if (m.has_exact(v)) mesh::round_vertex(m, c, v);
+  s.exact_left = m.exact_vertex_count();
+  for (int v = 0; v < m.vertex_count(); ++v)
+    if (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) ++s.unprojected;
+  s.final = measure(m);
+  s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return s;
+}
+
+}  // namespace curvemesh::optimize

@@ -1,0 +1,41 @@
+#pragma once
+// §4.1 second half: quality improvement of the linear mesh by TetWild's loop in 2D — split long
+// edges, collapse short ones, swap, smooth, project feature vertices onto their curves — under
+// the invariants of mesh/operations.hpp, with adaptive sizing where quality stalls.
+#include <string>
+
+#include "mesh/constraints.hpp"
+#include "mesh/tri_mesh.hpp"
+
+namespace curvemesh::optimize {
+
+struct Options {
+  double edge_length_rel = 1.0 / 20;     // l: target edge length, relative to the diagonal d
+  double min_edge_length_rel = 1e-4;     // l_m: adaptive sizing never asks for less
+  int max_iterations = 80;               // §4.1: the batch default
+  double stop_min_angle_deg = 10.0;      // α: stop once every angle is at least this ...
+  double stop_max_amips = 10.0;          // ... or every AMIPS energy is at most this (TetWild)
+};
+
+struct Quality {
+  int vertices = 0, triangles = 0;
+  double min_angle_deg = 0, max_amips = 0, mean_amips = 0, mean_edge_length = 0;
+};
+
+struct Stats {
+  int iterations = 0;
+  long splits = 0, collapses = 0, swaps = 0, smooths = 0, projections = 0;
+  int unprojected = 0;  // primary vertices still off their curve at the end
+  int exact_left = 0;   // vertices that could not be rounded to doubles (0 in a writable mesh)
+  Quality initial, final;
+  std::string stop_reason;
+  double seconds = 0;
+};
+
+// Measures the mesh as stored (doubles).
+Quality measure(const mesh::TriMesh& mesh);
+
+// Improves `mesh` in place. `diagonal` is the input's bounding-box diagonal d.
+Stats optimize(mesh::TriMesh& mesh, const mesh::Constraints& constraints, double diagonal, const Options& options = {});
+
+}  // namespace curvemesh::optimize
