@@ -1,0 +1,14 @@
+#pragma once
+// Triangle's .poly files (points and segments) as features, so that users of Triangle can mesh
+// their own inputs: every segment is secondary (kept within ε, as in the paper's §5.3), vertices
+// no segment uses are isolated points. Holes and regional attributes are read and ignored.
+#include <string>
+
+#include "features/features.hpp"
+
+namespace curvemesh::features {
+
+// Throws svg::InputError naming the file and line on anything malformed.
+Features read_poly(const std::string& path, const Options& options);
+
+}  // namespace curvemesh::features
