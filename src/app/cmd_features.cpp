@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "app/commands.hpp"
+#include "app/feature_options.hpp"
 #include "features/features.hpp"
 #include "io/features_json.hpp"
 #include "io/output_file.hpp"
@@ -26,12 +27,7 @@ struct FeaturesArgs {
 };
 
 int run_features(const FeaturesArgs& args) {
-  if (args.processed && args.features.epsilon_rel < args.features.mu_rel) {
-    // Resampling already puts secondary chords up to μ from their curves.
-    std::cerr << "curvemesh: --epsilon (" << args.features.epsilon_rel << ") must be at least --mu ("
-              << args.features.mu_rel << ")\n";
-    return kUsage;
-  }
+  if (args.processed && !feature_options_valid(args.features)) return kUsage;
   svg::FeatureSoup soup;
   try {
     soup = svg::read_svg_file(args.input, args.read);
@@ -81,31 +77,7 @@ Runner add_features_command(CLI::App& app) {
                   "bounding-box diagonal d) become isolated points")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  auto& f = args->features;
-  cmd->add_option("--mu", f.mu_rel, "feature envelope mu, relative to d: min distance between primary features")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--epsilon", f.epsilon_rel, "envelope epsilon of secondary features, relative to d")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("-l,--edge-length", f.edge_length_rel, "target edge length l, relative to d")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--min-edge-length", f.min_edge_length_rel,
-                  "minimal edge length l_m, relative to d: curvature above 2/l_m makes a feature secondary")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--min-angle", f.alpha_deg,
-                  "alpha in degrees: max turning of the curve along one primary edge (target min angle)")
-      ->capture_default_str()
-      ->check(CLI::Range(0.1, 60.0));
-  cmd->add_option("--junction-angle", f.junction_angle_deg,
-                  "primary pieces sharing an endpoint stay primary when they meet at least at this angle (deg)")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 180.0));
-  cmd->add_option("--eps-m", f.eps_m_rel, "round-off tolerance epsilon_m on control points, relative to d")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+  add_feature_options(*cmd, args->features);
   return [args] { return run_features(*args); };
 }
 

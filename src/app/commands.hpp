@@ -14,5 +14,6 @@ enum ExitCode : int { kOk = 0, kInvalidInput = 1, kUsage = 2, kInternal = 3 };
 using Runner = std::function<int()>;
 
 Runner add_features_command(CLI::App& app);
+Runner add_mesh_command(CLI::App& app);
 
 }  // namespace curvemesh::app

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "geometry/amips.hpp"
@@ -34,6 +35,15 @@ std::vector<Edge> all_edges(const TriMesh& m) {
   edges.reserve(pairs.size());
   for (const auto& [a, b] : pairs) edges.push_back({a, b, (m.point(a) - m.point(b)).norm()});
   return edges;
+}
+
+// TetWild's rule: a collapse must not create an edge longer than 4/3 of the target, or the
+// split and collapse passes undo each other forever.
+template <class Target>
+bool collapse_keeps_edges_short(const TriMesh& m, int from, int to, const Target& target) {
+  for (int w : m.neighbours(from))
+    if (w != to && (m.point(w) - m.point(to)).norm() > 4.0 / 3.0 * target(to, w)) return false;
+  return true;
 }
 
 bool is_edge(const TriMesh& m, int a, int b) {
@@ -79,10 +89,11 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
   std::vector<double> size(m.vertex_count(), target);  // adaptive sizing field, per vertex
   const auto edge_target = [&](int a, int b) { return 0.5 * (size[a] + size[b]); };
   double best_max = s.initial.max_amips;
-  int stalled = 0;
+  int stalled = 0, fruitless_refinements = 0, since_fewest = 0;
+  long fewest_changes = std::numeric_limits<long>::max();
 
   for (; s.iterations < o.max_iterations; ++s.iterations) {
-    long changes = 0;
+    long changes = 0;  // splits and collapses: the sizing work done in this iteration  // splits and collapses: the sizing work left
     // Split long edges, longest first.
     {
       auto edges = all_edges(m);
@@ -103,8 +114,8 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
       std::vector<char> touched(m.vertex_count(), 0);
       for (const Edge& e : edges) {
         if (touched[e.a] || touched[e.b] || !is_edge(m, e.a, e.b)) continue;
-        if (mesh::collapse_edge(m, c, e.a, e.b, o.stop_max_amips) ||
-            mesh::collapse_edge(m, c, e.b, e.a, o.stop_max_amips)) {
+        if ((collapse_keeps_edges_short(m, e.a, e.b, edge_target) && mesh::collapse_edge(m, c, e.a, e.b, o.stop_max_amips)) ||
+            (collapse_keeps_edges_short(m, e.b, e.a, edge_target) && mesh::collapse_edge(m, c, e.b, e.a, o.stop_max_amips))) {
           ++s.collapses, ++changes;
           touched[e.a] = touched[e.b] = 1;
         }
@@ -112,7 +123,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
     }
     // Swap where it lowers the larger energy of the two triangles.
     for (const Edge& e : all_edges(m))
-      if (is_edge(m, e.a, e.b) && mesh::swap_edge(m, e.a, e.b)) ++s.swaps, ++changes;
+      if (is_edge(m, e.a, e.b) && mesh::swap_edge(m, e.a, e.b)) ++s.swaps;
     // Smooth, project feature vertices onto their curves (Fig. 8), round exact vertices.
     for (int v = 0; v < m.vertex_count(); ++v) {
       if (m.triangles_of(v).empty()) continue;
@@ -133,8 +144,15 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
 
     const Quality q = measure(m);
     const bool good = q.min_angle_deg >= o.stop_min_angle_deg || q.max_amips <= o.stop_max_amips;
-    // The stop rule of §4.1 applies once the sizes are met: nothing left to split or collapse.
-    if (good && changes == 0) {
+    // The stop rule of §4.1 applies once the sizes are met: nothing is left to split or collapse,
+    // or what is left is the churn smoothing and swapping cause (no fewer changes in 3 iterations).
+    if (changes < fewest_changes) {
+      fewest_changes = changes;
+      since_fewest = 0;
+    } else {
+      ++since_fewest;
+    }
+    if (good && (changes == 0 || since_fewest >= 3)) {
       s.stop_reason = "quality";
       ++s.iterations;
       break;
@@ -142,21 +160,21 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
     if (q.max_amips < best_max * (1 - 1e-3)) {
       best_max = q.max_amips;
       stalled = 0;
-    } else if (++stalled >= 3) {
-      // Adaptive sizing (TetWild): refine around the worst triangles when quality stalls.
-      bool refined = false;
-      for (int t = 0; t < m.triangle_slots(); ++t) {
-        const auto& tri = m.triangle(t);
-        if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) <= o.stop_max_amips) continue;
-        for (int v : tri)
-          if (size[v] > smallest) size[v] = std::max(smallest, 0.5 * size[v]), refined = true;
-      }
-      stalled = 0;
-      if (!refined && changes == 0) {
+      fruitless_refinements = 0;
+    } else if (!good && ++stalled >= 3) {
+      // Adaptive sizing (TetWild): refine around the worst triangles when quality stalls, and
+      // give up when refining twice in a row brought nothing.
+      if (++fruitless_refinements > 2) {
         s.stop_reason = "no improvement";
         ++s.iterations;
         break;
       }
+      for (int t = 0; t < m.triangle_slots(); ++t) {
+        const auto& tri = m.triangle(t);
+        if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) <= o.stop_max_amips) continue;
+        for (int v : tri) size[v] = std::max(smallest, 0.5 * size[v]);
+      }
+      stalled = 0;
     }
   }
   if (s.stop_reason.empty()) s.stop_reason = "iteration limit";

@@ -1,0 +1,156 @@
+#!/usr/bin/env python3
+"""Command-line contract of `curvemesh mesh --linear`, every output certified by the independent
+checker tests/tools/msh_check.py (exact orientation from the written text, Gmsh and meshio read it):
+the bundled examples in both file versions, the target edge length on a unit square, determinism,
+Triangle .poly input, nasty inputs (many segments through a point, overlapping collinear segments,
+segments shorter than 1e-12 d, points on segments), copies scaled by 1e-6 and 1e6, bad input.
+
+usage: mesh_test.py CURVEMESH_BINARY EXAMPLES_DIR
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+binary, examples = sys.argv[1], sys.argv[2]
+checker = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools", "msh_check.py")
+failures = []
+passed = 0
+tmp = tempfile.TemporaryDirectory()
+
+
+def check(name, condition, detail=""):
+    global passed
+    if condition:
+        passed += 1
+    else:
+        failures.append(f"{name}: {detail}")
+        print(f"FAIL {name}: {detail}")
+
+
+def mesh(name, source, *extra):
+    out = os.path.join(tmp.name, name + ".msh")
+    stats = os.path.join(tmp.name, name + ".json")
+    r = subprocess.run([binary, "mesh", source, "-o", out, "--linear", "--stats", stats, *extra],
+                       capture_output=True, text=True, timeout=300)
+    return r, out, stats
+
+
+def certify(name, path):
+    """The checker's verdict and its measurements (JSON)."""
+    r = subprocess.run([sys.executable, checker, path, "--json"], capture_output=True, text=True, timeout=300)
+    check(f"{name}: independent checker accepts the mesh", r.returncode == 0, (r.stdout + r.stderr)[-500:])
+    try:
+        return json.loads(r.stdout)
+    except json.JSONDecodeError:
+        return {}
+
+
+def write(name, text):
+    path = os.path.join(tmp.name, name)
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+def poly(points, segments):
+    lines = [f"{len(points)} 2 0 0"]
+    lines += [f"{i + 1} {x!r} {y!r}" for i, (x, y) in enumerate(points)]
+    lines += [f"{len(segments)} 0"]
+    lines += [f"{i + 1} {a + 1} {b + 1}" for i, (a, b) in enumerate(segments)]
+    lines += ["0"]
+    return "\n".join(lines) + "\n"
+
+
+# The bundled examples, in both file versions.
+for example in sorted(os.listdir(examples)):
+    if not example.endswith(".svg"):
+        continue
+    for version in ("4.1", "2.2"):
+        name = f"{example}-{version}"
+        r, out, _ = mesh(name, os.path.join(examples, example), "--msh-version", version)
+        check(f"{name}: exit 0", r.returncode == 0, r.stderr)
+        if r.returncode == 0:
+            report = certify(name, out)
+            check(f"{name}: has primary or secondary feature edges",
+                  report.get("lines", {}).get("primary", 0) + report.get("lines", {}).get("secondary", 0) > 0,
+                  str(report.get("lines")))
+
+# Target edge length: a unit square with -l 0.05 has mean edge length within 25 % of 0.05 d.
+square = write("square.svg", '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 1 1">'
+                              '<rect width="1" height="1" fill="none" stroke="black"/></svg>')
+r, out, stats = mesh("square", square, "-l", "0.05")
+check("square: exit 0", r.returncode == 0, r.stderr)
+if r.returncode == 0:
+    report = certify("square", out)
+    target = 0.05 * math.sqrt(2)
+    mean = report.get("mean_edge_length", 0)
+    check("square: mean edge length within 25 % of 0.05 d", abs(mean - target) <= 0.25 * target,
+          f"mean {mean}, target {target}")
+
+# Determinism: the same input and options give the same bytes.
+first = mesh("det-a", os.path.join(examples, "overlapping-shapes.svg"))[1]
+second = mesh("det-b", os.path.join(examples, "overlapping-shapes.svg"))[1]
+with open(first, "rb") as a, open(second, "rb") as b:
+    check("determinism: byte-identical .msh", a.read() == b.read())
+
+# Nasty inputs, as Triangle .poly files (all secondary).
+star = [(0.0, 0.0)] + [(math.cos(2 * math.pi * k / 60), math.sin(2 * math.pi * k / 60)) for k in range(60)]
+nasty = {
+    "through-one-point": poly(star, [(0, k) for k in range(1, 61)]),
+    "collinear-overlaps": poly([(0, 0), (1, 0), (0.25, 0), (0.75, 0), (0.5, 0), (2, 0), (0, 1)],
+                               [(0, 1), (2, 3), (4, 5), (0, 5), (1, 6)]),
+    "tiny-segments": poly([(0, 0), (1, 1), (0.5, 0.5), (0.5 + 1e-13, 0.5), (0.2, 0.7), (0.2, 0.7 + 1e-13)],
+                          [(0, 1), (2, 3), (4, 5)]),
+    "points-on-segments": poly([(0, 0), (1, 0), (0.5, 0), (0.25, 0), (1, 1), (0.5, 0.5)], [(0, 1), (0, 4)]),
+    "crossing-grid": poly([(i / 7, 0) for i in range(8)] + [(i / 7, 1) for i in range(8)] +
+                          [(0, j / 7) for j in range(8)] + [(1, j / 7) for j in range(8)],
+                          [(i, 8 + i) for i in range(8)] + [(16 + j, 24 + j) for j in range(8)]),
+}
+for name, text in nasty.items():
+    r, out, _ = mesh(name, write(name + ".poly", text))
+    check(f"{name}: exit 0", r.returncode == 0, r.stderr)
+    if r.returncode == 0:
+        certify(name, out)
+
+# Scaled copies: the same mesh up to scale.
+base_points = [(0.1 * math.cos(k) + 0.5 * (k % 3), 0.3 * math.sin(2 * k) + 0.2 * (k % 5)) for k in range(12)]
+base_segments = [(k, (k + 1) % 12) for k in range(12)] + [(0, 6), (3, 9)]
+meshes = {}
+for scale in (1.0, 1e-6, 1e6):
+    name = f"scaled-{scale:g}"
+    r, out, stats = mesh(name, write(name + ".poly", poly([(x * scale, y * scale) for x, y in base_points], base_segments)))
+    check(f"{name}: exit 0", r.returncode == 0, r.stderr)
+    if r.returncode == 0:
+        report = certify(name, out)
+        meshes[scale] = report
+if len(meshes) == 3:
+    for scale in (1e-6, 1e6):
+        a, b = meshes[1.0], meshes[scale]
+        check(f"scale {scale:g}: same triangle count", a.get("triangles") == b.get("triangles"),
+              f"{a.get('triangles')} vs {b.get('triangles')}")
+        check(f"scale {scale:g}: same min angle", abs(a.get("min_angle_deg", 0) - b.get("min_angle_deg", 1)) < 1e-6,
+              f"{a.get('min_angle_deg')} vs {b.get('min_angle_deg')}")
+
+# Bad input: exit 1, one line naming the file, no output written.
+bad = {
+    "missing.svg": None,
+    "bad.poly": "3 2 0 0\n1 0 0\n2 1 0\n",  # truncated
+    "nan.poly": "2 2 0 0\n1 0 0\n2 nan 1\n1 0\n1 1 2\n0\n",
+    "dangling.poly": "2 2 0 0\n1 0 0\n2 1 1\n1 0\n1 1 3\n0\n",
+    "empty.svg": '<svg xmlns="http://www.w3.org/2000/svg"/>',
+}
+for name, text in bad.items():
+    source = os.path.join(tmp.name, name) if text is None else write(name, text)
+    out = os.path.join(tmp.name, name + ".msh")
+    r = subprocess.run([binary, "mesh", source, "-o", out, "--linear"], capture_output=True, text=True, timeout=60)
+    check(f"{name}: exit 1", r.returncode == 1, f"exit {r.returncode}: {r.stderr}")
+    check(f"{name}: one line naming the file", len(r.stderr.strip().splitlines()) == 1 and name in r.stderr, r.stderr)
+    check(f"{name}: no output", not os.path.exists(out))
+r = subprocess.run([binary, "mesh", "--help"], capture_output=True, text=True)
+check("mesh --help", r.returncode == 0 and "--linear" in r.stdout and "--msh-version" in r.stdout, r.stdout[-300:])
+
+print(f"{passed} checks passed, {len(failures)} failed")
+sys.exit(1 if failures else 0)
