@@ -103,13 +103,19 @@ int run_mesh(MeshArgs args) {
     stats["optimize"] = {{"iterations", s.iterations},   {"stop_reason", s.stop_reason},
                          {"splits", s.splits},           {"collapses", s.collapses},
                          {"swaps", s.swaps},             {"smooths", s.smooths},
-                         {"projections", s.projections}, {"unprojected_vertices", s.unprojected},
+                         {"projections", s.projections}, {"released_secondary_edges", s.released}, {"unprojected_vertices", s.unprojected},
                          {"exact_vertices_left", s.exact_left}};
   }
   const optimize::Quality q = optimize::measure(m);
   stats["mesh"] = quality_json(q);
   stats["mesh"]["target_edge_length"] = args.features.edge_length_rel * f.lengths.d;
 
+  if (const auto error = m.structure_error()) {
+    // Every operation checks its result exactly, so this is a bug; refuse rather than write it.
+    std::cerr << "curvemesh: internal error: " << args.input << ": the mesh is broken (" << *error
+              << "); no mesh written\n";
+    return kInternal;
+  }
   try {
     if (m.exact_vertex_count() > 0) {
       // Writing rounded coordinates could write an inverted triangle: refuse instead.

@@ -85,8 +85,18 @@ class Discretizer {
       start = end;
     }
     std::sort(cuts.begin(), cuts.end());
-    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
-    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) add_section(index, c, cuts[k], cuts[k + 1]);
+    // A section shorter than the minimal edge length l_m (an inflection next to another cut or to
+    // the curve's end) would pin two mesh vertices closer than any edge may be: its cut is dropped.
+    std::vector<double> kept{0.0};
+    for (std::size_t k = 1; k < cuts.size(); ++k) {
+      if ((c.eval(cuts[k]) - c.eval(kept.back())).norm() > len_.min_edge) {
+        kept.push_back(cuts[k]);
+      } else if (k + 1 == cuts.size() && kept.size() > 1) {
+        kept.back() = cuts[k];  // the curve's end stays; the cut before it goes
+      }
+    }
+    if (kept.size() == 1) kept.push_back(1.0);
+    for (std::size_t k = 0; k + 1 < kept.size(); ++k) add_section(index, c, kept[k], kept[k + 1]);
   }
 
   void add_straight(int index, const CubicBezier& c) {

@@ -106,6 +106,17 @@ double turning_angle(const CubicBezier& c, double t0, double t1) {
   return total;
 }
 
+double end_tangent_angle(const CubicBezier& c, double t0, double t1) {
+  if (!(t1 > t0)) return 0.0;
+  const double size = polygon_size(c);
+  if (!(size > 0)) return 0.0;
+  return angle_between(tangent(c, t0, t0, t1, size), tangent(c, t1, t0, t1, size));
+}
+
+bool turns_monotonically(const CubicBezier& c) {
+  return inflection_parameters(c).empty() && turning_angle(c) < kPi;
+}
+
 double half_turning_parameter(const CubicBezier& c) {
   const double size = polygon_size(c);
   if (!(size > 0)) return 0.5;

@@ -19,6 +19,15 @@ std::vector<double> inflection_parameters(const CubicBezier& c, double tolerance
 // Where c' vanishes the tangent is its limit from inside the interval.
 double turning_angle(const CubicBezier& c, double t0 = 0.0, double t1 = 1.0);
 
+// The angle between the unit tangents at t0 and t1 (same limits where c' vanishes). Equal to the
+// turning over [t0, t1] when the curve has no inflection there and turns by less than π (a
+// section of §4), at the cost of two tangents instead of 33.
+double end_tangent_angle(const CubicBezier& c, double t0, double t1);
+
+// True when c has no inflection inside (0, 1) and turns by less than π: then end_tangent_angle
+// is its turning on every sub-interval.
+bool turns_monotonically(const CubicBezier& c);
+
 // §4 "Total curvature split": the t in (0, 1) where the tangent is parallel to the average of the
 // end tangents (minus the average when the ends turn by more than π), which halves the turning of
 // a curve without inflections. 0.5 when the equation gives nothing usable.

@@ -14,6 +14,7 @@ using geometry::Vec2;
 struct SectionCurve {
   geometry::CubicBezier piece;  // the soup curve restricted to [t0, t1]
   double t0 = 0, t1 = 1;
+  bool monotone = false;  // no inflection, turning below π: the turning is the end-tangent angle
 
   double local(double t) const { return (t - t0) / (t1 - t0); }
   Vec2 eval(double t) const { return piece.eval(local(t)); }

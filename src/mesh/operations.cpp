@@ -13,7 +13,8 @@ namespace curvemesh::mesh {
 
 double SectionCurve::turning(double ta, double tb) const {
   const double lo = std::min(ta, tb), hi = std::max(ta, tb);
-  return geometry::turning_angle(piece, std::clamp(local(lo), 0.0, 1.0), std::clamp(local(hi), 0.0, 1.0));
+  const double a = std::clamp(local(lo), 0.0, 1.0), b = std::clamp(local(hi), 0.0, 1.0);
+  return monotone ? geometry::end_tangent_angle(piece, a, b) : geometry::turning_angle(piece, a, b);
 }
 
 namespace {
@@ -61,6 +62,7 @@ double max_amips_of(const TriMesh& m, const std::vector<int>& triangles) {
 }
 
 bool secondary_edges_inside(const TriMesh& m, const Constraints& c, int v, const Vec2& p) {
+  if (m.tag(v).kind == VertexKind::free) return true;  // no tagged edge at all
   for (int x : m.neighbours(v)) {
     const EdgeFeature* f = m.feature(v, x);
     if (f && f->kind == EdgeKind::secondary && !c.envelope.contains(p, m.point(x))) return false;
@@ -83,6 +85,16 @@ double star_energy(const TriMesh& m, int v, const Vec2& p) {
   for (int t : m.triangles_of(v)) {
     const auto& tri = m.triangle(t);
     e += geometry::amips(p, m.point(next_corner(tri, v)), m.point(prev_corner(tri, v)));
+  }
+  return e;
+}
+
+// The largest AMIPS energy of v's triangles with v at p.
+double star_max_energy(const TriMesh& m, int v, const Vec2& p) {
+  double e = 0;
+  for (int t : m.triangles_of(v)) {
+    const auto& tri = m.triangle(t);
+    e = std::max(e, geometry::amips(p, m.point(next_corner(tri, v)), m.point(prev_corner(tri, v))));
   }
   return e;
 }
@@ -151,7 +163,7 @@ bool side_neighbours(const TriMesh& m, int v, int& x, int& y) {
 
 }  // namespace
 
-int split_edge(TriMesh& m, const Constraints& c, int a, int b) {
+int split_edge(TriMesh& m, const Constraints& c, int a, int b, double energy_bound) {
   const auto [t1, cc] = triangle_left_of(m, a, b);
   const auto [t2, d] = triangle_left_of(m, b, a);
   if (t1 < 0 && t2 < 0) return -1;
@@ -164,6 +176,18 @@ int split_edge(TriMesh& m, const Constraints& c, int a, int b) {
     if (t2 >= 0 && (orientation_new(m, d, b, p) <= 0 || orientation_new(m, a, d, p) <= 0)) return false;
     return true;
   };
+
+  // The largest energy of the four (two on the box) new triangles with the new vertex at p.
+  const auto new_energy = [&](const Vec2& p) {
+    double e = 0;
+    if (t1 >= 0) e = std::max({e, geometry::amips(m.point(a), p, m.point(cc)), geometry::amips(p, m.point(b), m.point(cc))});
+    if (t2 >= 0) e = std::max({e, geometry::amips(m.point(b), p, m.point(d)), geometry::amips(p, m.point(a), m.point(d))});
+    return e;
+  };
+  std::vector<int> old_triangles;
+  for (int t : {t1, t2})
+    if (t >= 0) old_triangles.push_back(t);
+  const double old_energy = max_amips_of(m, old_triangles);
 
   Vec2 p = 0.5 * (m.point(a) + m.point(b));
   VertexTag tag;
@@ -178,7 +202,7 @@ int split_edge(TriMesh& m, const Constraints& c, int a, int b) {
       tag.section = f.source;
       tag.t = tm;
       const Vec2 on_curve = c.sections[f.source].eval(tm);
-      tag.on_curve = valid(on_curve);
+      tag.on_curve = valid(on_curve) && new_energy(on_curve) <= std::max(old_energy, energy_bound);
       if (tag.on_curve) p = on_curve;
       break;
     }
@@ -263,11 +287,11 @@ bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double en
     EdgeFeature f;
   };
   std::vector<Moved> moved;
+  std::vector<int> merged;
   for (int x : m.neighbours(from)) {
     if (x == to) continue;
     const EdgeFeature* g = m.feature(from, x);
     if (!g) continue;
-    if (m.feature(to, x)) return false;  // two tagged edges would merge into one
     EdgeFeature h = *g;
     if (g->kind == EdgeKind::secondary && !c.envelope.contains(m.point(to), m.point(x))) return false;
     if (g->kind == EdgeKind::primary) {
@@ -275,6 +299,16 @@ bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double en
       const double tx = param_at(*g, from, x, x), tt = param_at(*edge, from, to, to);
       if (c.sections[g->source].turning(tx, tt) > c.max_turning + kTurningSlack) return false;
       h = primary_edge(*g, x, tx, to, tt);
+    }
+    // Two tagged edges merge into one. A secondary edge only asks to stay inside the envelope
+    // (checked above), so it may merge into any edge, which keeps the stronger tag; a curve or
+    // box side never merges into another.
+    if (const EdgeFeature* existing = m.feature(to, x)) {
+      if (g->kind != EdgeKind::secondary && existing->kind != EdgeKind::secondary) return false;
+      if (g->kind == EdgeKind::secondary) {
+        merged.push_back(x);  // (to, x) keeps its own tag
+        continue;
+      }
     }
     moved.push_back({x, h});
   }
@@ -296,6 +330,7 @@ bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double en
   for (int t : removed) m.remove_triangle(t);
   for (std::size_t i = 0; i < kept.size(); ++i) m.set_triangle(kept[i], replaced[i]);
   if (edge) m.clear_feature(from, to);
+  for (int x : merged) m.clear_feature(from, x);
   bool gained_secondary = false;
   for (const Moved& mv : moved) {
     m.clear_feature(from, mv.x);
@@ -335,68 +370,90 @@ bool smooth_vertex(TriMesh& m, const Constraints& c, int v) {
   const VertexTag tag = m.tag(v);
   if (tag.kind == VertexKind::fixed || m.has_exact(v) || m.triangles_of(v).empty()) return false;
   const Vec2 x0 = m.point(v);
-  const double e0 = star_energy(m, v, x0);
-  if (!std::isfinite(e0)) return false;
-  const auto d = star_derivatives(m, v, x0);
+  // A star with a triangle too flat for doubles has infinite energy: then there is no Newton step,
+  // but any valid position of finite energy is better, and the fallback below looks for one.
+  const double e0 = star_energy(m, v, x0), max0 = star_max_energy(m, v, x0);
+  const bool finite = std::isfinite(e0);
+  // A move is better when the summed energy decreases and the worst triangle gets no worse.
+  const auto better = [&](const Vec2& p) { return star_energy(m, v, p) < e0 && star_max_energy(m, v, p) <= max0; };
+  const auto d = finite ? star_derivatives(m, v, x0) : geometry::AmipsDerivatives{};
 
   if (tag.kind == VertexKind::primary) {
     if (!tag.on_curve) return false;  // projection moves it first
     CurveNeighbours n;
     if (!curve_neighbours(m, v, n)) return false;
     const SectionCurve& curve = c.sections[tag.section];
-    const auto g = geometry::along_curve(d, curve.derivative(tag.t), curve.second_derivative(tag.t));
     const double lo = std::min(n.tx, n.ty), hi = std::max(n.tx, n.ty), margin = 1e-3 * (hi - lo);
-    double dt = g.second > 0 ? -g.first / g.second : (g.first > 0 ? -0.25 : 0.25) * (hi - lo);
-    for (int k = 0; k < 10; ++k, dt *= 0.5) {
-      const double t = std::clamp(tag.t + dt, lo + margin, hi - margin);
-      if (t == tag.t) return false;
-      if (!(star_energy(m, v, curve.eval(t)) < e0)) continue;
-      if (try_curve_move(m, c, v, n, t)) return true;
+    const auto search = [&](double dt) {
+      for (int k = 0; k < 10; ++k, dt *= 0.5) {
+        const double t = std::clamp(tag.t + dt, lo + margin, hi - margin);
+        if (t == tag.t) return false;
+        if (!better(curve.eval(t))) continue;
+        if (try_curve_move(m, c, v, n, t)) return true;
+      }
+      return false;
+    };
+    if (finite) {
+      const auto g = geometry::along_curve(d, curve.derivative(tag.t), curve.second_derivative(tag.t));
+      if (search(g.second > 0 ? -g.first / g.second : (g.first > 0 ? -0.25 : 0.25) * (hi - lo))) return true;
     }
-    return false;
+    return search(0.5 * (lo + hi) - tag.t);  // towards the middle of its two curve edges
   }
 
-  Vec2 step;
-  if (tag.kind == VertexKind::boundary) {
-    int x = -1, y = -1;
-    if (!side_neighbours(m, v, x, y)) return false;
-    const int axis = (tag.side == 0 || tag.side == 2) ? 0 : 1;
-    const double h = d.hessian(axis, axis), gr = d.gradient[axis];
-    const double reach = std::abs(m.point(x)[axis] - m.point(y)[axis]);
-    step = Vec2::Zero();
-    step[axis] = h > 0 ? -gr / h : (gr > 0 ? -0.25 : 0.25) * reach;
-    const double lo = std::min(m.point(x)[axis], m.point(y)[axis]), hi = std::max(m.point(x)[axis], m.point(y)[axis]);
-    for (int k = 0; k < 10; ++k, step *= 0.5) {
-      Vec2 p = x0;
-      p[axis] = std::clamp(x0[axis] + step[axis], lo + 1e-3 * reach, hi - 1e-3 * reach);
+  // The search along a step: halved until the energy decreases and every invariant holds.
+  const auto search = [&](Vec2 step, int tries, const auto& clamp) {
+    for (int k = 0; k < tries; ++k, step *= 0.5) {
+      const Vec2 p = clamp(x0 + step);
       if (p == x0) return false;
-      if (!(star_energy(m, v, p) < e0) || !star_valid_at(m, v, p) || !secondary_edges_inside(m, c, v, p)) continue;
+      if (!better(p) || !star_valid_at(m, v, p) || !secondary_edges_inside(m, c, v, p)) continue;
       m.set_position(v, p);
       return true;
     }
     return false;
+  };
+
+  if (tag.kind == VertexKind::boundary) {
+    int x = -1, y = -1;
+    if (!side_neighbours(m, v, x, y)) return false;
+    const int axis = (tag.side == 0 || tag.side == 2) ? 0 : 1;
+    const double reach = std::abs(m.point(x)[axis] - m.point(y)[axis]);
+    const double lo = std::min(m.point(x)[axis], m.point(y)[axis]), hi = std::max(m.point(x)[axis], m.point(y)[axis]);
+    const auto clamp = [&](Vec2 p) {
+      p[1 - axis] = x0[1 - axis];
+      p[axis] = std::clamp(p[axis], lo + 1e-3 * reach, hi - 1e-3 * reach);
+      return p;
+    };
+    if (finite) {
+      const double h = d.hessian(axis, axis), gr = d.gradient[axis];
+      Vec2 step = Vec2::Zero();
+      step[axis] = h > 0 ? -gr / h : (gr > 0 ? -0.25 : 0.25) * reach;
+      if (step.allFinite() && search(step, 10, clamp)) return true;
+    }
+    Vec2 step = Vec2::Zero();
+    step[axis] = 0.5 * (lo + hi) - x0[axis];
+    return search(step, 10, clamp);
   }
 
   // Free and secondary vertices: Newton in the plane; a Hessian that is not positive definite is
-  // shifted until it is.
-  Eigen::Matrix2d h = d.hessian;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(h);
-  const double smallest = eig.eigenvalues()[0], largest = eig.eigenvalues()[1];
-  if (!(smallest > 1e-12 * std::max(1.0, std::abs(largest))))
-    h += Eigen::Matrix2d::Identity() * (std::abs(smallest) + 1e-6 * std::max(1.0, std::abs(largest)));
-  step = -h.ldlt().solve(d.gradient);
-  if (!step.allFinite()) return false;
-  for (int k = 0; k < 12; ++k, step *= 0.5) {
-    const Vec2 p = x0 + step;
-    if (p == x0) return false;
-    if (!(star_energy(m, v, p) < e0) || !star_valid_at(m, v, p) || !secondary_edges_inside(m, c, v, p)) continue;
-    m.set_position(v, p);
-    return true;
+  // shifted until it is. If that fails, towards the centre of the star (Laplacian smoothing).
+  const auto same = [](const Vec2& p) { return p; };
+  if (finite) {
+    Eigen::Matrix2d h = d.hessian;
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(h);
+    const double smallest = eig.eigenvalues()[0], largest = eig.eigenvalues()[1];
+    if (!(smallest > 1e-12 * std::max(1.0, std::abs(largest))))
+      h += Eigen::Matrix2d::Identity() * (std::abs(smallest) + 1e-6 * std::max(1.0, std::abs(largest)));
+    const Vec2 step = -h.ldlt().solve(d.gradient);
+    if (step.allFinite() && search(step, 12, same)) return true;
   }
-  return false;
+  Vec2 centre = Vec2::Zero();
+  const auto ring = m.neighbours(v);
+  for (int w : ring) centre += m.point(w);
+  centre /= static_cast<double>(ring.size());
+  return search(Vec2(centre - x0), 8, same);
 }
 
-bool project_vertex(TriMesh& m, const Constraints& c, int v) {
+bool project_vertex(TriMesh& m, const Constraints& c, int v, double energy_bound) {
   const VertexTag tag = m.tag(v);
   if (tag.kind != VertexKind::primary || tag.on_curve || m.has_exact(v)) return false;
   CurveNeighbours n;
@@ -405,13 +462,15 @@ bool project_vertex(TriMesh& m, const Constraints& c, int v) {
   const double lo = std::min(n.tx, n.ty), hi = std::max(n.tx, n.ty), margin = 1e-3 * (hi - lo);
   const geometry::ClosestPoint cp = geometry::closest_point(curve.piece, m.point(v));
   const double t = std::clamp(curve.t0 + cp.t * (curve.t1 - curve.t0), lo + margin, hi - margin);
-  if (try_curve_move(m, c, v, n, t)) return true;
-  // Fig. 8: get as close as the neighbourhood allows now; smoothing of the others makes room.
+  // No worse than the star is now, or than the bound: projecting must not undo the optimization.
   const Vec2 x0 = m.point(v), target = curve.eval(t);
+  const double allowed = std::max(star_max_energy(m, v, x0), energy_bound);
+  if (star_max_energy(m, v, target) <= allowed && try_curve_move(m, c, v, n, t)) return true;
+  // Fig. 8: get as close as the neighbourhood allows now; smoothing of the others makes room.
   for (double lambda : {0.5, 0.25, 0.125}) {
     const Vec2 p = x0 + lambda * (target - x0);
     if (p == x0) break;
-    if (star_valid_at(m, v, p) && secondary_edges_inside(m, c, v, p)) {
+    if (star_max_energy(m, v, p) <= allowed && star_valid_at(m, v, p) && secondary_edges_inside(m, c, v, p)) {
       m.set_position(v, p);
       return true;
     }
@@ -436,6 +495,31 @@ bool round_vertex(TriMesh& m, const Constraints& c, int v) {
     }
   }
   return false;
+}
+
+bool release_secondary_edge(TriMesh& m, int a, int b) {
+  const EdgeFeature* f = m.feature(a, b);
+  if (!f || f->kind != EdgeKind::secondary) return false;
+  bool shadowed = false;
+  for (int t : m.edge_triangles(a, b)) {
+    const auto& tri = m.triangle(t);
+    const int x = tri[0] != a && tri[0] != b ? tri[0] : tri[1] != a && tri[1] != b ? tri[1] : tri[2];
+    shadowed |= m.feature(a, x) != nullptr && m.feature(x, b) != nullptr;
+  }
+  if (!shadowed) return false;
+  m.clear_feature(a, b);
+  for (int v : {a, b}) {
+    if (m.tag(v).kind != VertexKind::secondary) continue;
+    bool still = false;
+    for (int w : m.neighbours(v))
+      if (const EdgeFeature* g = m.feature(v, w); g && g->kind == EdgeKind::secondary) still = true;
+    if (!still) {
+      VertexTag tag = m.tag(v);
+      tag.kind = VertexKind::free;
+      m.set_tag(v, tag);
+    }
+  }
+  return true;
 }
 
 bool edge_satisfies_invariants(const TriMesh& m, const Constraints& c, int a, int b) {

@@ -15,9 +15,10 @@
 namespace curvemesh::mesh {
 
 // Splits edge (a, b) at its middle — for a primary edge at the curve's mid-parameter when that
-// inverts nothing, else at the chord's middle (then the vertex waits for projection). Returns the
-// new vertex, or -1 when rejected.
-int split_edge(TriMesh& mesh, const Constraints& constraints, int a, int b);
+// inverts nothing and makes no new triangle worse than max(the two old ones, energy_bound), else
+// at the chord's middle (then the vertex waits for projection). Returns the new vertex, or -1
+// when rejected.
+int split_edge(TriMesh& mesh, const Constraints& constraints, int a, int b, double energy_bound);
 
 // Moves vertex `from` onto `to` and removes it. Accepted only if the largest AMIPS energy of the
 // new triangles is at most max(largest before, energy_bound). §4.1: curve endpoints never move.
@@ -29,12 +30,22 @@ bool swap_edge(TriMesh& mesh, int a, int b);
 
 // One Newton step (with line search) on the summed AMIPS energy of v's triangles: in the plane
 // for free and secondary vertices, along the curve for primary ones (App. A), along the side
-// for boundary ones. Returns true if v moved.
+// for boundary ones; when Newton finds nothing (or a triangle is too flat for doubles), a step
+// towards the middle of the star. A move is taken when the sum decreases and the worst of v's
+// triangles gets no worse. Returns true if v moved.
 bool smooth_vertex(TriMesh& mesh, const Constraints& constraints, int v);
 
 // Fig. 8: moves a primary vertex that is not yet on its curve towards its closest point on the
-// curve, as far as the invariants allow; it never moves away. Returns true if it moved.
-bool project_vertex(TriMesh& mesh, const Constraints& constraints, int v);
+// curve, as far as the invariants allow without making its worst triangle worse than
+// max(now, energy_bound); it never moves away. Returns true if it moved.
+bool project_vertex(TriMesh& mesh, const Constraints& constraints, int v, double energy_bound);
+
+// §4.1 (end of "Vertex projection"): drops the tag of secondary edge (a, b) when one of its
+// triangles has two other tagged edges, so that a feature path a–x–b runs beside it within the
+// triangle: the sliver between the secondary chord and that path could never be improved, and
+// the path stands for the secondary input there. Secondary vertices left without secondary edges
+// become free. Returns true if the tag was dropped.
+bool release_secondary_edge(TriMesh& mesh, int a, int b);
 
 // Gives a vertex with an exact (rational) position a double position: its nearest double, or,
 // if that inverts a triangle, a point slightly towards the centre of its star. Returns success.

@@ -43,7 +43,8 @@ enum class VertexKind : std::uint8_t {
   secondary,  // on secondary edges only: moves in the plane while they stay in the ε-envelope
   primary,    // on one primary curve (inside a section): moves only along the curve (App. A)
   boundary,   // on one side of the box: moves only along it
-  fixed,      // box corner, curve or section end, isolated point, crossing of features: stays
+  fixed,      // box corner, curve or section end, isolated point, crossing of curves or of a
+              // curve and the box: stays
 };
 
 struct VertexTag {

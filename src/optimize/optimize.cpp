@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <queue>
 
 #include "geometry/amips.hpp"
 #include "mesh/operations.hpp"
@@ -16,24 +17,32 @@ using geometry::Vec2;
 
 namespace {
 
+
 struct Edge {
   int a, b;
   double length;
 };
 
+// Every edge once, in triangle order (deterministic): an interior edge from the triangle in which
+// it runs from its lower to its higher vertex, a hull edge from its only triangle.
 std::vector<Edge> all_edges(const TriMesh& m) {
-  std::vector<std::pair<int, int>> pairs;
-  pairs.reserve(3 * static_cast<std::size_t>(m.triangle_count()));
+  std::vector<Edge> edges;
+  edges.reserve(3 * static_cast<std::size_t>(m.triangle_count()) / 2 + 8);
+  const auto has_directed = [&](int a, int b) {
+    for (int t : m.triangles_of(a)) {
+      const auto& tri = m.triangle(t);
+      if ((tri[0] == a && tri[1] == b) || (tri[1] == a && tri[2] == b) || (tri[2] == a && tri[0] == b)) return true;
+    }
+    return false;
+  };
   for (int t = 0; t < m.triangle_slots(); ++t) {
     if (!m.alive(t)) continue;
     const auto& tri = m.triangle(t);
-    for (int i = 0; i < 3; ++i) pairs.emplace_back(std::min(tri[i], tri[(i + 1) % 3]), std::max(tri[i], tri[(i + 1) % 3]));
+    for (int i = 0; i < 3; ++i) {
+      const int a = tri[i], b = tri[(i + 1) % 3];
+      if (a < b || !has_directed(b, a)) edges.push_back({std::min(a, b), std::max(a, b), (m.point(a) - m.point(b)).norm()});
+    }
   }
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  std::vector<Edge> edges;
-  edges.reserve(pairs.size());
-  for (const auto& [a, b] : pairs) edges.push_back({a, b, (m.point(a) - m.point(b)).norm()});
   return edges;
 }
 
@@ -54,9 +63,54 @@ bool is_edge(const TriMesh& m, int a, int b) {
   return false;
 }
 
+// Lipschitz grading of a per-vertex sizing field over the mesh edges: no vertex asks for more
+// than its neighbour's size plus `gradation` times their distance (Dijkstra from the smallest).
+void grade(const TriMesh& m, std::vector<double>& size, double gradation) {
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+  for (int v = 0; v < m.vertex_count(); ++v) queue.emplace(size[v], v);
+  while (!queue.empty()) {
+    const auto [s, v] = queue.top();
+    queue.pop();
+    if (s > size[v]) continue;
+    for (int w : m.neighbours(v)) {
+      const double bound = s + gradation * (m.point(v) - m.point(w)).norm();
+      if (bound < size[w]) {
+        size[w] = bound;
+        queue.emplace(bound, w);
+      }
+    }
+  }
+}
+
+// The initial sizing field: the target length, except where two vertices that can never merge
+// are closer (the edges of a tight bend of a curve, two section ends of a curve): there the mesh
+// must be about as fine as their distance (`factor` times it), and grows from there. Without this
+// the optimizer would find out by stalling and halving, many times over.
+std::vector<double> initial_sizes(const TriMesh& m, double target, double factor, double gradation) {
+  std::vector<double> size(m.vertex_count(), target);
+  const auto pinned = [&](int v) {
+    const auto& t = m.tag(v);
+    return t.kind == mesh::VertexKind::fixed || (t.kind == mesh::VertexKind::primary && t.on_curve);
+  };
+  for (const Edge& e : all_edges(m)) {
+    const mesh::EdgeFeature* f = m.feature(e.a, e.b);
+    const bool curve_edge = f && f->kind == mesh::EdgeKind::primary && pinned(e.a) && pinned(e.b);
+    const bool fixed_pair = m.tag(e.a).kind == mesh::VertexKind::fixed && m.tag(e.b).kind == mesh::VertexKind::fixed;
+    if (curve_edge || fixed_pair) {
+      size[e.a] = std::min(size[e.a], factor * e.length);
+      size[e.b] = std::min(size[e.b], factor * e.length);
+    }
+  }
+  grade(m, size, gradation);
+  return size;
+}
+
 }  // namespace
 
-Quality measure(const TriMesh& m) {
+Quality measure(const TriMesh& m) { return measure(m, true); }
+
+Quality measure(const TriMesh& m, bool mean_edge_length) {
   Quality q;
   q.vertices = m.vertex_count();
   q.triangles = m.triangle_count();
@@ -70,12 +124,13 @@ Quality measure(const TriMesh& m) {
     max_e = std::max(max_e, e);
     sum_e += e;
   }
-  const auto edges = all_edges(m);
-  double sum_l = 0;
-  for (const Edge& e : edges) sum_l += e.length;
   q.min_angle_deg = q.triangles ? min_angle * 180 / std::numbers::pi : 0;
   q.max_amips = max_e;
   q.mean_amips = q.triangles ? sum_e / q.triangles : 0;
+  if (!mean_edge_length) return q;
+  const auto edges = all_edges(m);
+  double sum_l = 0;
+  for (const Edge& e : edges) sum_l += e.length;
   q.mean_edge_length = edges.empty() ? 0 : sum_l / static_cast<double>(edges.size());
   return q;
 }
@@ -86,7 +141,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
   m.compact();
   s.initial = measure(m);
   const double target = o.edge_length_rel * diagonal, smallest = o.min_edge_length_rel * diagonal;
-  std::vector<double> size(m.vertex_count(), target);  // adaptive sizing field, per vertex
+  std::vector<double> size = initial_sizes(m, target, o.pinned_size_factor, o.gradation);  // the sizing field, per vertex
   const auto edge_target = [&](int a, int b) { return 0.5 * (size[a] + size[b]); };
   double best_max = s.initial.max_amips;
   int stalled = 0, fruitless_refinements = 0, since_fewest = 0;
@@ -100,7 +155,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
       std::erase_if(edges, [&](const Edge& e) { return e.length <= 4.0 / 3.0 * edge_target(e.a, e.b); });
       std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.length > y.length; });
       for (const Edge& e : edges) {
-        const int v = mesh::split_edge(m, c, e.a, e.b);
+        const int v = mesh::split_edge(m, c, e.a, e.b, o.stop_max_amips);
         if (v < 0) continue;
         size.push_back(edge_target(e.a, e.b));
         ++s.splits, ++changes;
@@ -130,10 +185,17 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
       if (m.has_exact(v)) {
         mesh::round_vertex(m, c, v);
       } else if (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) {
-        if (mesh::project_vertex(m, c, v)) ++s.projections;
+        if (mesh::project_vertex(m, c, v, o.stop_max_amips)) ++s.projections;
       } else if (mesh::smooth_vertex(m, c, v)) {
         ++s.smooths;
       }
+    }
+    // Secondary chords beside a path of feature edges, in triangles that stay bad: released.
+    for (int t = 0; t < m.triangle_slots(); ++t) {
+      if (!m.alive(t)) continue;
+      const auto tri = m.triangle(t);
+      if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) <= o.stop_max_amips) continue;
+      for (int i = 0; i < 3; ++i) s.released += mesh::release_secondary_edge(m, tri[i], tri[(i + 1) % 3]);
     }
     // Compact: removed elements do not keep their memory.
     const auto remap = m.compact();
@@ -142,26 +204,30 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
       if (remap[v] >= 0) resized[remap[v]] = size[v];
     size = std::move(resized);
 
-    const Quality q = measure(m);
+    const Quality q = measure(m, false);
+    if (o.log)
+      *o.log << "optimize: iteration " << s.iterations + 1 << ": " << q.triangles << " triangles, min angle "
+             << q.min_angle_deg << ", max AMIPS " << q.max_amips << ", " << changes << " splits and collapses" << "\n";
     const bool good = q.min_angle_deg >= o.stop_min_angle_deg || q.max_amips <= o.stop_max_amips;
-    // The stop rule of §4.1 applies once the sizes are met: nothing is left to split or collapse,
-    // or what is left is the churn smoothing and swapping cause (no fewer changes in 3 iterations).
+    // The stop rule of §4.1 applies once the sizes are met: little is left to split or collapse
+    // (2 % of the triangles), or what is left is the churn smoothing and swapping cause (no fewer
+    // changes in 2 iterations).
     if (changes < fewest_changes) {
       fewest_changes = changes;
       since_fewest = 0;
     } else {
       ++since_fewest;
     }
-    if (good && (changes == 0 || since_fewest >= 3)) {
+    if (good && (50 * changes <= q.triangles || since_fewest >= 2)) {
       s.stop_reason = "quality";
       ++s.iterations;
       break;
     }
-    if (q.max_amips < best_max * (1 - 1e-3)) {
+    if (q.max_amips < best_max * (1 - 1e-2)) {
       best_max = q.max_amips;
       stalled = 0;
       fruitless_refinements = 0;
-    } else if (!good && ++stalled >= 3) {
+    } else if (!good && ++stalled >= 2) {
       // Adaptive sizing (TetWild): refine around the worst triangles when quality stalls, and
       // give up when refining twice in a row brought nothing.
       if (++fruitless_refinements > 2) {
@@ -174,6 +240,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
         if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) <= o.stop_max_amips) continue;
         for (int v : tri) size[v] = std::max(smallest, 0.5 * size[v]);
       }
+      grade(m, size, o.gradation);
       stalled = 0;
     }
   }

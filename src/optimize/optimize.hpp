@@ -2,6 +2,7 @@
 // §4.1 second half: quality improvement of the linear mesh by TetWild's loop in 2D — split long
 // edges, collapse short ones, swap, smooth, project feature vertices onto their curves — under
 // the invariants of mesh/operations.hpp, with adaptive sizing where quality stalls.
+#include <ostream>
 #include <string>
 
 #include "mesh/constraints.hpp"
@@ -15,6 +16,11 @@ struct Options {
   int max_iterations = 80;               // §4.1: the batch default
   double stop_min_angle_deg = 10.0;      // α: stop once every angle is at least this ...
   double stop_max_amips = 10.0;          // ... or every AMIPS energy is at most this (TetWild)
+  // Sizing: near two vertices that can never merge (a tight bend of a curve), the target is this
+  // factor times their distance, and it grows away from there by `gradation` per unit length.
+  double pinned_size_factor = 3.0;
+  double gradation = 1.0;
+  std::ostream* log = nullptr;           // one line per iteration when set (--verbose)
 };
 
 struct Quality {
@@ -25,6 +31,7 @@ struct Quality {
 struct Stats {
   int iterations = 0;
   long splits = 0, collapses = 0, swaps = 0, smooths = 0, projections = 0;
+  long released = 0;    // secondary edges whose tag was dropped (mesh::release_secondary_edge)
   int unprojected = 0;  // primary vertices still off their curve at the end
   int exact_left = 0;   // vertices that could not be rounded to doubles (0 in a writable mesh)
   Quality initial, final;
@@ -34,6 +41,8 @@ struct Stats {
 
 // Measures the mesh as stored (doubles).
 Quality measure(const mesh::TriMesh& mesh);
+// The same without the mean edge length (which needs every edge): what each iteration looks at.
+Quality measure(const mesh::TriMesh& mesh, bool mean_edge_length);
 
 // Improves `mesh` in place. `diagonal` is the input's bounding-box diagonal d.
 Stats optimize(mesh::TriMesh& mesh, const mesh::Constraints& constraints, double diagonal, const Options& options = {});

@@ -1,11 +1,14 @@
 #include "triangulate/constraints.hpp"
 
+#include "geometry/bezier_analysis.hpp"
+
 namespace curvemesh::triangulate {
 
 mesh::Constraints constraints_of(const features::Features& features, const geometry::Box2& box) {
   mesh::Constraints c;
   c.sections.reserve(features.sections.size());
-  for (const features::Section& s : features.sections) c.sections.push_back({s.piece, s.t0, s.t1});
+  for (const features::Section& s : features.sections)
+    c.sections.push_back({s.piece, s.t0, s.t1, s.kind == features::Kind::primary && geometry::turns_monotonically(s.piece)});
   std::vector<std::array<geometry::Vec2, 2>> segments;
   segments.reserve(features.segments.size());
   for (const features::Segment& s : features.segments) segments.push_back({s.a, s.b});

@@ -143,6 +143,8 @@ class Builder {
                 add_point({b.max.x(), b.max.y()}, true), add_point({b.min.x(), b.max.y()}, true)};
     section_points_.resize(f_.sections.size());
     for (std::size_t s = 0; s < f_.sections.size(); ++s) {
+      // Secondary sections reach the mesh as their simplified segments, not as curves.
+      if (f_.sections[s].kind != features::Kind::primary) continue;
       const auto& poly = f_.sections[s].polyline;
       for (std::size_t i = 0; i < poly.size(); ++i)
         section_points_[s].push_back(add_point(poly[i], i == 0 || i + 1 == poly.size()));
@@ -284,7 +286,10 @@ class Builder {
   static mesh::VertexTag tag_of(const VertexInfo& info, const Incidence& inc) {
     mesh::VertexTag tag;
     tag.isolated = info.isolated;
-    const int families = (inc.section >= 0) + inc.secondary + std::popcount(inc.sides);
+    // Secondary edges only ask to stay inside the ε-envelope, which every operation checks, so
+    // they do not pin a vertex: where a secondary segment meets a curve or the box, the vertex
+    // moves like a primary or boundary vertex. Only curves and box sides pin each other.
+    const int families = (inc.section >= 0) + std::popcount(inc.sides);
     if (info.fixed || inc.several_sections || families > 1) {
       tag.kind = mesh::VertexKind::fixed;
     } else if (inc.section >= 0) {

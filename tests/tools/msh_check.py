@@ -2,8 +2,9 @@
 """Certifies a 2D triangle mesh in a Gmsh .msh file, independently of the code that wrote it.
 
 Reads ASCII .msh 4.1 and 2.2 with its own parser and decides the orientation of every triangle
-in exact rational arithmetic on the coordinates *as written in the file* (fractions.Fraction of
-the decimal text), so no rounding can hide an inverted or flat triangle. Triangles must be
+in exact rational arithmetic on the coordinates every reader of the file obtains: each decimal
+in the text parsed to the nearest double (as Gmsh, meshio and ParaView do), then taken exactly as
+a fraction, so no rounding in the test can hide an inverted or flat triangle. Triangles must be
 counter-clockwise. Line elements must lie on triangle edges. Then Gmsh (python3-gmsh) and meshio
 (python3-meshio) must both read the file and see the same triangles, and Gmsh's Jacobian and the
 inverse gradient error of its quality analysis must be positive. (Gmsh measures planar elements
@@ -70,11 +71,15 @@ class Tokens:
 
 
 def coordinate(word):
+    # The decimal text itself is not what readers compute with: a triangle that is positive in the
+    # doubles can be flat or inverted in the decimals by a fraction of an ulp, and vice versa.
     try:
-        value = Fraction(word)
-    except (ValueError, ZeroDivisionError):
+        value = float(word)
+    except ValueError:
+        raise MeshError(f"coordinate {word!r} is not a number")
+    if not math.isfinite(value):
         raise MeshError(f"coordinate {word!r} is not a finite number")
-    return value
+    return Fraction(value)
 
 
 def parse(text):

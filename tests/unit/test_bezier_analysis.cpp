@@ -145,3 +145,18 @@ TEST(StraightAndDegenerate, Detection) {
     EXPECT_FALSE(is_straight({{0, 0}, {s, 1e-6 * s}, {2 * s, 0}, {3 * s, 0}}, 1e-8 * s));
   }
 }
+
+TEST(Turning, EndTangentAngleIsTheTurningOfMonotonePieces) {
+  // On pieces without inflection that turn less than π, the end-tangent angle is the turning on
+  // every sub-interval (checked against dense sampling); elsewhere the pieces are not monotone.
+  const CubicBezier pieces[] = {arc(kPi / 2), arc(0.9 * kPi), {{0, 0}, {1, 0}, {2, 1}, {2, 3}},
+                                {{0, 0}, {5, 0}, {5, 1e-3}, {5, 2}}};
+  for (const CubicBezier& c : pieces) {
+    ASSERT_TRUE(turns_monotonically(c));
+    for (double a : {0.0, 0.1, 0.37})
+      for (double b : {0.5, 0.81, 1.0}) EXPECT_NEAR(end_tangent_angle(c, a, b), sampled_turning(c, a, b), 1e-6);
+  }
+  EXPECT_FALSE(turns_monotonically({{0, 0}, {1, 1}, {2, -1}, {3, 0}}));   // an S: one inflection
+  EXPECT_FALSE(turns_monotonically({{0, 0}, {2, 2}, {-1, 2}, {1, 0}}));   // a loop: 270°
+  EXPECT_NEAR(end_tangent_angle(CubicBezier::line({0, 0}, {3, 4}), 0.2, 0.9), 0.0, 1e-15);
+}

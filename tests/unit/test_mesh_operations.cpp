@@ -172,14 +172,14 @@ TEST(MeshOperations, RandomSequencesKeepEveryInvariant) {
       bool done = false;
       std::string name;
       switch (op) {
-        case 0: name = "split"; done = split_edge(f.mesh, f.constraints, e[0], e[1]) >= 0; break;
+        case 0: name = "split"; done = split_edge(f.mesh, f.constraints, e[0], e[1], 10.0) >= 0; break;
         case 1: name = "collapse"; done = collapse_edge(f.mesh, f.constraints, v, e[0] + e[1] - v, 1e9); break;
         case 2: name = "swap"; done = swap_edge(f.mesh, e[0], e[1]); break;
         case 3: name = "smooth"; done = smooth_vertex(f.mesh, f.constraints, v); break;
         default: {
           // Push a vertex off its curve by a split on the chord, then ask for projection.
           name = "project";
-          done = project_vertex(f.mesh, f.constraints, v);
+          done = project_vertex(f.mesh, f.constraints, v, 10.0);
         }
       }
       if (!done) continue;
@@ -229,7 +229,7 @@ TEST(MeshOperations, SplitOfAPrimaryEdgeLandsOnTheCurve) {
   Fixture f = make_grid(6, 4);
   for (const auto& [edge, feat] : f.mesh.sorted_features()) {
     if (feat.kind != EdgeKind::primary) continue;
-    const int v = split_edge(f.mesh, f.constraints, edge[0], edge[1]);
+    const int v = split_edge(f.mesh, f.constraints, edge[0], edge[1], 10.0);
     ASSERT_GE(v, 0);
     const VertexTag tag = f.mesh.tag(v);
     EXPECT_EQ(tag.kind, VertexKind::primary);

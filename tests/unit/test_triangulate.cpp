@@ -268,15 +268,21 @@ TEST(Triangulate, PrimarySectionsTagVerticesWithTheirParameter) {
   EXPECT_EQ(intervals.front().first, 0.0);
   EXPECT_EQ(intervals.back().second, 1.0);
   for (std::size_t i = 0; i + 1 < intervals.size(); ++i) EXPECT_EQ(intervals[i].second, intervals[i + 1].first);
-  // The crossing vertex lies on two features: it is fixed.
+  // The crossing with the secondary segment is a primary vertex off the curve (on the chord,
+  // parameter interpolated): it may slide along the curve, its secondary edges kept in the envelope.
   int crossings = 0;
-  for (int v = 0; v < m.vertex_count(); ++v)
-    if (m.neighbours(v).size() >= 4 && m.tag(v).kind == mesh::VertexKind::fixed && !m.tag(v).isolated) {
-      bool on_both = false;
-      for (int w : m.neighbours(v))
-        if (const auto* e = m.feature(v, w); e && e->kind == mesh::EdgeKind::secondary) on_both = true;
-      crossings += on_both;
-    }
+  for (int v = 0; v < m.vertex_count(); ++v) {
+    bool secondary = false;
+    for (int w : m.neighbours(v))
+      if (const auto* e = m.feature(v, w); e && e->kind == mesh::EdgeKind::secondary) secondary = true;
+    if (!secondary || m.tag(v).kind == mesh::VertexKind::secondary) continue;
+    ++crossings;
+    EXPECT_EQ(m.tag(v).kind, mesh::VertexKind::primary);
+    EXPECT_EQ(m.tag(v).section, 0);
+    EXPECT_FALSE(m.tag(v).on_curve);
+    EXPECT_GT(m.tag(v).t, 0.0);
+    EXPECT_LT(m.tag(v).t, 1.0);
+  }
   EXPECT_EQ(crossings, 1);
 }
 
