@@ -81,6 +81,8 @@ int run_mesh(MeshArgs args) {
     std::cerr << "curvemesh: " << args.input << ": nothing to mesh (no curves, segments or points)\n";
     return kInvalidInput;
   }
+  if (f.sections.empty() && f.segments.empty() && f.points.empty())
+    std::cerr << "curvemesh: " << args.input << ": warning: nothing is drawn; meshing the canvas alone\n";
   int primary = 0;
   for (const auto& s : f.sections) primary += s.kind == features::Kind::primary;
   stats["features"] = {{"primary_sections", primary},

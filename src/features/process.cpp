@@ -41,6 +41,8 @@ std::vector<Section> runs_of(const detail::Discretized& d, const svg::FeatureSou
 Features process(const svg::FeatureSoup& soup, const Options& options) {
   Features f;
   f.box = soup.bounds();
+  // Nothing drawn (a file of gradient or pattern definitions): the canvas alone is meshed.
+  if (f.box.empty() && !soup.canvas.empty() && soup.canvas.diagonal() > 0) f.box = soup.canvas;
   f.lengths = resolve(options, f.box.diagonal());
   detail::Discretized d = detail::discretize(soup, f.lengths);
   detail::tag_primary_secondary(d, f.lengths);

@@ -53,6 +53,10 @@ struct FeatureSoup {
   std::vector<SourceElement> sources;
   std::vector<std::string> warnings;
 
+  // The root's canvas in user units: its viewBox, else (0, 0) to its width and height (100 when
+  // missing). What a drawing with nothing drawn is meshed on.
+  Box2 canvas;
+
   // Tight bounding box of every curve and point (empty for an empty soup).
   Box2 bounds() const;
 };

@@ -574,6 +574,9 @@ FeatureSoup Reader::read() {
       if (!(ctx.viewport_width > 0)) ctx.viewport_width = 100;
       if (!(ctx.viewport_height > 0)) ctx.viewport_height = 100;
     }
+    const Vec2 origin = sized ? Vec2(vb->x, vb->y) : Vec2::Zero();
+    soup_.canvas.add(origin);
+    soup_.canvas.add(origin + Vec2(ctx.viewport_width, ctx.viewport_height));
     ctx.depth = 1;
     walk_children(root, ctx);
   }

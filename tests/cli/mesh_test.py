@@ -140,7 +140,7 @@ bad = {
     "bad.poly": "3 2 0 0\n1 0 0\n2 1 0\n",  # truncated
     "nan.poly": "2 2 0 0\n1 0 0\n2 nan 1\n1 0\n1 1 2\n0\n",
     "dangling.poly": "2 2 0 0\n1 0 0\n2 1 1\n1 0\n1 1 3\n0\n",
-    "empty.svg": '<svg xmlns="http://www.w3.org/2000/svg"/>',
+    "not-svg.svg": '<html xmlns="http://www.w3.org/1999/xhtml"/>',
 }
 for name, text in bad.items():
     source = os.path.join(tmp.name, name) if text is None else write(name, text)
@@ -149,6 +149,19 @@ for name, text in bad.items():
     check(f"{name}: exit 1", r.returncode == 1, f"exit {r.returncode}: {r.stderr}")
     check(f"{name}: one line naming the file", len(r.stderr.strip().splitlines()) == 1 and name in r.stderr, r.stderr)
     check(f"{name}: no output", not os.path.exists(out))
+# Nothing drawn (a file of gradient definitions): the canvas is meshed, with a warning.
+r, out, stats = mesh("empty", write("empty.svg", '<svg xmlns="http://www.w3.org/2000/svg" viewBox="10 20 300 200">'
+                                    '<defs><linearGradient id="g"/></defs></svg>'))
+check("empty drawing: exit 0 with a warning", r.returncode == 0 and "nothing is drawn" in r.stderr, r.stderr)
+if r.returncode == 0:
+    certify("empty drawing", out)
+    with open(out) as f:
+        text = f.read()
+    nodes = text[text.index("$Nodes"):text.index("$EndNodes")].splitlines()
+    xy = [tuple(map(float, l.split()[:2])) for l in nodes if len(l.split()) == 3]
+    xs, ys = [p[0] for p in xy], [p[1] for p in xy]
+    check("empty drawing: the mesh covers the viewBox", min(xs) <= 10 and max(xs) >= 310 and min(ys) <= 20 and max(ys) >= 220,
+          (min(xs), max(xs), min(ys), max(ys)))
 r = subprocess.run([binary, "mesh", "--help"], capture_output=True, text=True)
 check("mesh --help", r.returncode == 0 and "--linear" in r.stdout and "--msh-version" in r.stdout, r.stdout[-300:])
 
