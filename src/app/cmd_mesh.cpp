@@ -25,7 +25,7 @@ namespace {
 
 struct MeshArgs {
   std::string input, output_msh, output_svg, output_stats, stop_after = "optimize";
-  bool linear = false;
+  bool linear = false, verbose = false;
   int msh_version = 41;
   svg::ReadOptions read;
   features::Options features;
@@ -52,6 +52,7 @@ int run_mesh(MeshArgs args) {
   args.optimize.edge_length_rel = args.features.edge_length_rel;
   args.optimize.min_edge_length_rel = args.features.min_edge_length_rel;
   args.optimize.stop_min_angle_deg = args.features.alpha_deg;
+  if (args.verbose) args.optimize.log = &std::cerr;
 
   using Clock = std::chrono::steady_clock;
   const auto seconds_since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
@@ -162,6 +163,7 @@ Runner add_mesh_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"triangulate", "optimize"}));
   add_feature_options(*cmd, args->features);
+  cmd->add_flag("-v,--verbose", args->verbose, "report each optimization pass on stderr (triangles, min angle, max AMIPS)");
   cmd->add_option("--max-iterations", args->optimize.max_iterations, "optimization passes at most")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);

@@ -149,7 +149,7 @@ class Discretizer {
 
   // §4 "Curve resampling": halve until the piece is at most l long, within μ of its chord and
   // turns at most α (what Theorem 3.4 needs to bend the edge later). Pieces that cannot get
-  // there (cusps, curvature above 2 / l_m) are kept, but marked for the secondary set.
+  // there (cusps, curvature above α / l_m) are kept, but marked for the secondary set.
   void refine(const CubicBezier& c, double t0, double t1, const Vec2& a, const Vec2& b, int depth) {
     const CubicBezier sub = c.subcurve(t0, t1);
     const double chord = (b - a).norm();
@@ -175,9 +175,9 @@ class Discretizer {
     p.t1 = t1;
     p.a = a;
     p.b = b;
-    // §3.1 bounded curvature: a circle of curvature above 2 / l_m has no room for a triangle of
-    // the minimal size.
-    p.too_curved = unresolved || sampled_curvature(sub) > 2.0 / len_.min_edge;
+    // §3.1 bounded curvature: a primary edge turns at most α and is at least l_m long, so where
+    // the curvature exceeds α / l_m the curve cannot be followed by primary edges.
+    p.too_curved = unresolved || sampled_curvature(sub) > len_.alpha_rad / len_.min_edge;
     out_.pieces.push_back(p);
   }
 

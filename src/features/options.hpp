@@ -9,7 +9,7 @@ struct Options {
   double eps_m_rel = 1e-8;             // ε_m: round-off tolerance on control points
   double alpha_deg = 10.0;             // α: max turning per primary edge (and target min angle)
   double edge_length_rel = 1.0 / 20;   // l: target edge length
-  double min_edge_length_rel = 1e-4;   // l_m: curvature above 2 / l_m is secondary
+  double min_edge_length_rel = 1e-4;   // l_m: curvature above α / l_m is secondary
   // Junction rule: primary pieces that share an endpoint may meet there if the angle between
   // them is at least this (a triangle with min angle α fits between them).
   double junction_angle_deg = 10.0;

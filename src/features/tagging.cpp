@@ -4,7 +4,9 @@
 //
 // The rule (Definition 3.1 made discrete): two primary pieces are at least μ apart, except
 //  - pieces of one input curve joined by at most π/2·μ of its polyline (consecutive pieces, and
-//    the pieces of a bend tighter than μ: one connected component in the μ-ball), and
+//    the pieces of a bend tighter than μ: one connected component in the μ-ball), unless the
+//    curve folds back between them (a cusp sharper than the junction angle, or the two pieces
+//    pointing in opposite directions), and
 //  - pieces that share an endpoint exactly (a path's corners, shapes that touch at a vertex)
 //    and meet there at an angle of at least the junction angle (default α = 10°), so that a
 //    triangle with minimal angle α fits between them.
@@ -62,11 +64,17 @@ static bool in_conflict(const Discretized& d, int i, int j, const Lengths& len) 
   const Piece& q = d.pieces[j];
   // One connected component inside the μ-ball (Definition 3.1): pieces of one input curve joined
   // by at most π/2·μ of its polyline, as on a tight bend, may come close.
+  // Not where the curve folds back on itself, though: consecutive pieces meeting at a cusp at
+  // less than the junction angle, or pieces running in opposite directions, would leave a sliver
+  // between them that no triangle of minimal angle α fits.
   if (d.sections[p.section].curve == d.sections[q.section].curve) {
     const Piece& first = i < j ? p : q;
     const Piece& second = i < j ? q : p;
     const double gap = second.along - (first.along + (first.b - first.a).norm());
-    if (gap <= 0.5 * std::numbers::pi * len.mu) return false;
+    if (gap <= 0.5 * std::numbers::pi * len.mu) {
+      if (first.b == second.a) return angle_between(first.a - first.b, second.b - second.a) < len.junction_angle_rad;
+      return (first.b - first.a).dot(second.b - second.a) <= 0;
+    }
   }
   // A shared endpoint: allowed when the pieces leave it at a wide enough angle.
   const std::array<std::pair<Vec2, Vec2>, 2> p_ends{{{p.a, p.b}, {p.b, p.a}}};  // (end, other end)

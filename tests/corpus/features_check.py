@@ -5,8 +5,9 @@ trusted):
 
   1. primary polylines never cross: no two primary edges intersect except at a shared endpoint;
   2. the μ rule (README, "Feature processing"): two primary edges are at least μ apart, unless
-     they belong to one input curve and are joined along it by at most π/2·μ of polyline, or
-     share an endpoint and meet there at an angle of at least the junction angle;
+     they belong to one input curve and are joined along it by at most π/2·μ of polyline without
+     folding back (adjacent edges meet at least at the junction angle, others point the same
+     way), or share an endpoint and meet there at an angle of at least the junction angle;
   3. every secondary segment lies within ε of the input curve it came from (5 points per segment
      against the curve sampled as a 2,000-point polyline).
 
@@ -96,7 +97,16 @@ def check_file(args_path):
             # Joined along one section by at most π/2·μ of polyline (consecutive edges included).
             first_end = np.minimum(along[i][:, None] + edge_len[i][:, None], along[None] + edge_len[None])
             second_start = np.maximum(along[i][:, None], along[None])
-            consecutive = (sec[i][:, None] == sec[None]) & (second_start - first_end <= 0.5 * np.pi * mu + tol)
+            gap = second_start - first_end
+            consecutive = (sec[i][:, None] == sec[None]) & (gap <= 0.5 * np.pi * mu + tol)
+            # ... unless the curve folds back between them: adjacent edges meeting at less than the
+            # junction angle, or edges pointing in opposite directions.
+            D = B - A
+            dot = D[i] @ D.T
+            norms = np.maximum(edge_len[i][:, None] * edge_len[None], 1e-300)
+            joint_angle = np.arccos(np.clip(-dot / norms, -1.0, 1.0))
+            adjacent = np.abs(gap) <= tol
+            consecutive &= np.where(adjacent, joint_angle >= junction - 1e-9, dot > 0)
             # Shared endpoints and the angle between the edges there.
             ends_i = np.stack([A[i], B[i]], 1)          # (k, 2, 2)
             ends_j = np.stack([A, B], 1)                 # (n, 2, 2)

@@ -175,3 +175,73 @@ TEST(Features, DeterministicAndScaleInvariant) {
     }
   }
 }
+
+TEST(Features, CurvesTooTightForAPrimaryEdgeOfLengthLmAreSecondary) {
+  // A primary edge turns at most α and is at least l_m long, so curvature above α / l_m cannot be
+  // primary. d ≈ 100√2, l_m = 1e-4 d ≈ 0.0141, α / l_m ≈ 12.3; μ is made small so that only the
+  // curvature decides. A circle of radius 0.05 (curvature 20) is secondary; one of radius 0.2
+  // (curvature 5) is primary.
+  features::Options options;
+  options.mu_rel = 1e-6;
+  options.epsilon_rel = 2e-6;
+  const auto circle = [](Vec2 c, double r) {
+    const double k = 0.5522847498 * r;
+    return std::vector<CubicBezier>{{c + Vec2(r, 0), c + Vec2(r, k), c + Vec2(k, r), c + Vec2(0, r)},
+                                    {c + Vec2(0, r), c + Vec2(-k, r), c + Vec2(-r, k), c + Vec2(-r, 0)},
+                                    {c + Vec2(-r, 0), c + Vec2(-r, -k), c + Vec2(-k, -r), c + Vec2(0, -r)},
+                                    {c + Vec2(0, -r), c + Vec2(k, -r), c + Vec2(r, -k), c + Vec2(r, 0)}};
+  };
+  std::vector<CubicBezier> curves{CubicBezier::line({0, 0}, {100, 100})};
+  for (const auto& c : circle({20, 80}, 0.05)) curves.push_back(c);
+  for (const auto& c : circle({80, 20}, 0.2)) curves.push_back(c);
+  const auto f = features::process(soup_of(curves), options);
+  ASSERT_NEAR(f.lengths.alpha_rad / f.lengths.min_edge, 12.3, 0.1);
+  for (const auto& s : f.sections) {
+    if (s.curve == 0) continue;
+    EXPECT_EQ(s.kind, s.curve <= 4 ? Kind::secondary : Kind::primary) << "curve " << s.curve;
+  }
+}
+
+TEST(Features, CurvesThatFoldBackKeepNoSliverBetweenPrimaryPieces) {
+  // Closed cubics that go out and come back along nearly the same line (as drawn in the wild:
+  // P0 = P3, inner control points nearly collinear with it), and a cubic with a true cusp. The
+  // pieces on the way out and on the way back are close along the curve, but fold back: no two
+  // primary pieces of such a curve that touch may meet at less than the junction angle, and two
+  // that point opposite ways must be at least μ apart, however close they are along the curve.
+  const std::vector<std::array<Vec2, 4>> shapes{{Vec2(0, 0), Vec2(-1.606, -1.235), Vec2(-1.916, -1.473), Vec2(0, 0)},
+                                                {Vec2(0, 0), Vec2(-1.606, -1.235), Vec2(-1.916, -1.373), Vec2(0, 0)},
+                                                {Vec2(0, 0), Vec2(1, 1), Vec2(0, 1), Vec2(1, 0)}};
+  for (const auto& shape : shapes) for (const double s : {5.0, 10.0, 20.0, 37.0}) {
+    const CubicBezier curve(s * shape[0], s * shape[1], s * shape[2], s * shape[3]);
+    const auto soup = soup_of({curve, CubicBezier::line({-100, -100}, {100, 100})});
+    const auto f = features::process(soup);
+    std::vector<std::pair<Vec2, Vec2>> edges;
+    for (const auto& sec : f.sections)
+      if (sec.kind == Kind::primary && sec.curve == 0)
+        for (std::size_t k = 0; k + 1 < sec.polyline.size(); ++k) edges.push_back({sec.polyline[k], sec.polyline[k + 1]});
+    ASSERT_FALSE(edges.empty());
+    int touching = 0;
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      for (std::size_t j = i + 1; j < edges.size(); ++j) {
+        for (const auto& [p, p_far] : {edges[i], std::pair{edges[i].second, edges[i].first}}) {
+          for (const auto& [q, q_far] : {edges[j], std::pair{edges[j].second, edges[j].first}}) {
+            if (p != q) continue;
+            ++touching;
+            const Vec2 u = (p_far - p).normalized(), v = (q_far - q).normalized();
+            EXPECT_GE(std::acos(std::clamp(u.dot(v), -1.0, 1.0)), f.lengths.junction_angle_rad - 1e-9)
+                << "scale " << s << " at " << p.transpose();
+          }
+        }
+      }
+    }
+    EXPECT_GT(touching, 0);
+    for (const auto& [a, b] : edges) {
+      for (const auto& [c, e] : edges) {
+        if (a == c || a == e || b == c || b == e || (b - a).dot(e - c) > 0) continue;
+        const double gap = std::min({point_segment_distance(a, c, e), point_segment_distance(b, c, e),
+                                     point_segment_distance(c, a, b), point_segment_distance(e, a, b)});
+        EXPECT_GE(gap, f.lengths.mu * (1 - 1e-9)) << "scale " << s << " at " << a.transpose();
+      }
+    }
+  }
+}
