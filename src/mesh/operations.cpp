@@ -497,14 +497,15 @@ bool round_vertex(TriMesh& m, const Constraints& c, int v) {
   return false;
 }
 
-bool release_secondary_edge(TriMesh& m, int a, int b) {
+bool release_secondary_edge(TriMesh& m, const Constraints& c, int a, int b) {
   const EdgeFeature* f = m.feature(a, b);
   if (!f || f->kind != EdgeKind::secondary) return false;
   bool shadowed = false;
   for (int t : m.edge_triangles(a, b)) {
     const auto& tri = m.triangle(t);
     const int x = tri[0] != a && tri[0] != b ? tri[0] : tri[1] != a && tri[1] != b ? tri[1] : tri[2];
-    shadowed |= m.feature(a, x) != nullptr && m.feature(x, b) != nullptr;
+    shadowed |= m.feature(a, x) != nullptr && m.feature(x, b) != nullptr &&
+                c.envelope.contains(m.point(a), m.point(x)) && c.envelope.contains(m.point(x), m.point(b));
   }
   if (!shadowed) return false;
   m.clear_feature(a, b);

@@ -41,11 +41,11 @@ bool smooth_vertex(TriMesh& mesh, const Constraints& constraints, int v);
 bool project_vertex(TriMesh& mesh, const Constraints& constraints, int v, double energy_bound);
 
 // §4.1 (end of "Vertex projection"): drops the tag of secondary edge (a, b) when one of its
-// triangles has two other tagged edges, so that a feature path a–x–b runs beside it within the
-// triangle: the sliver between the secondary chord and that path could never be improved, and
-// the path stands for the secondary input there. Secondary vertices left without secondary edges
-// become free. Returns true if the tag was dropped.
-bool release_secondary_edge(TriMesh& mesh, int a, int b);
+// triangles has two other tagged edges a–x and x–b that lie inside the ε-envelope themselves: the
+// sliver between the secondary chord and that path could never be improved, and the path stands
+// for the secondary input there, within ε as the invariant asks. Secondary vertices left without
+// secondary edges become free. Returns true if the tag was dropped.
+bool release_secondary_edge(TriMesh& mesh, const Constraints& constraints, int a, int b);
 
 // Gives a vertex with an exact (rational) position a double position: its nearest double, or,
 // if that inverts a triangle, a point slightly towards the centre of its star. Returns success.

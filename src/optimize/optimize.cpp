@@ -195,7 +195,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
       if (!m.alive(t)) continue;
       const auto tri = m.triangle(t);
       if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) <= o.stop_max_amips) continue;
-      for (int i = 0; i < 3; ++i) s.released += mesh::release_secondary_edge(m, tri[i], tri[(i + 1) % 3]);
+      for (int i = 0; i < 3; ++i) s.released += mesh::release_secondary_edge(m, c, tri[i], tri[(i + 1) % 3]);
     }
     // Compact: removed elements do not keep their memory.
     const auto remap = m.compact();

@@ -267,3 +267,40 @@ TEST(MeshOperations, SmoothingLowersTheEnergyOfAFreeVertex) {
 
 }  // namespace
 }  // namespace curvemesh::mesh
+
+namespace curvemesh::mesh {
+namespace {
+
+// A secondary chord a–b with a flat triangle a–b–x above it whose other sides are tagged too.
+Fixture chord_beside_path(double x_height) {
+  Fixture f;
+  f.constraints.envelope = geometry::SegmentEnvelope({{Vec2(0, 0), Vec2(1, 0)}}, 0.004);
+  f.constraints.box.add(Vec2(-1, -2));
+  f.constraints.box.add(Vec2(2, 2));
+  f.constraints.max_turning = 10.0 * M_PI / 180;
+  VertexTag fixed, secondary;
+  fixed.kind = VertexKind::fixed;
+  secondary.kind = VertexKind::secondary;
+  const int a = f.mesh.add_vertex(Vec2(0, 0), fixed), b = f.mesh.add_vertex(Vec2(1, 0), fixed);
+  const int x = f.mesh.add_vertex(Vec2(0.5, x_height), secondary), y = f.mesh.add_vertex(Vec2(0.5, -1), VertexTag{});
+  f.mesh.add_triangle(a, b, x);
+  f.mesh.add_triangle(a, y, b);
+  for (const auto& [p, q] : {std::pair{a, b}, std::pair{a, x}, std::pair{x, b}}) f.mesh.set_feature(p, q, {EdgeKind::secondary, -1, 0});
+  return f;
+}
+
+TEST(MeshOperations, SecondaryChordIsReleasedOnlyWhenThePathBesideItStaysInTheEnvelope) {
+  Fixture inside = chord_beside_path(0.001);
+  EXPECT_TRUE(release_secondary_edge(inside.mesh, inside.constraints, 0, 1));
+  EXPECT_EQ(inside.mesh.feature(0, 1), nullptr);
+  EXPECT_NE(inside.mesh.feature(0, 2), nullptr);
+  // x still has its secondary edges, so it stays secondary.
+  EXPECT_EQ(inside.mesh.tag(2).kind, VertexKind::secondary);
+
+  Fixture outside = chord_beside_path(0.01);  // the path a–x–b leaves the ε = 0.004 envelope
+  EXPECT_FALSE(release_secondary_edge(outside.mesh, outside.constraints, 0, 1));
+  EXPECT_NE(outside.mesh.feature(0, 1), nullptr);
+}
+
+}  // namespace
+}  // namespace curvemesh::mesh
