@@ -16,7 +16,7 @@ void add_feature_options(CLI::App& cmd, features::Options& f) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   cmd.add_option("--min-edge-length", f.min_edge_length_rel,
-                 "minimal edge length l_m, relative to d: curvature above alpha/l_m (a primary edge turning alpha would be shorter than l_m) makes a feature secondary")
+                 "minimal edge length l_m, relative to d: pieces shorter than l_m, or curving more than alpha/l_m (a primary edge turning alpha would be shorter than l_m), are secondary")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   cmd.add_option("--min-angle", f.alpha_deg,

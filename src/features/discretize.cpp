@@ -122,6 +122,7 @@ class Discretizer {
       p.t1 = double(k + 1) / n;
       p.a = k == 0 ? a : a + p.t0 * (b - a);
       p.b = k + 1 == n ? b : a + p.t1 * (b - a);
+      p.unfit = (p.b - p.a).norm() < len_.min_edge;  // shorter than the minimal edge length
       out_.pieces.push_back(p);
     }
     finish_section(s);
@@ -175,9 +176,10 @@ class Discretizer {
     p.t1 = t1;
     p.a = a;
     p.b = b;
-    // §3.1 bounded curvature: a primary edge turns at most α and is at least l_m long, so where
-    // the curvature exceeds α / l_m the curve cannot be followed by primary edges.
-    p.too_curved = unresolved || sampled_curvature(sub) > len_.alpha_rad / len_.min_edge;
+    // A primary edge is at least l_m long (the minimal edge length of the mesh) and turns at most
+    // α, so a shorter piece — a whole curve shorter than l_m — or one where the curvature exceeds
+    // α / l_m cannot be followed by primary edges (§3.1, bounded curvature).
+    p.unfit = unresolved || (b - a).norm() < len_.min_edge || sampled_curvature(sub) > len_.alpha_rad / len_.min_edge;
     out_.pieces.push_back(p);
   }
 

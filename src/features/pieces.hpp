@@ -11,7 +11,7 @@ struct Piece {
   int section = -1;      // index of its CurveSection
   double t0 = 0, t1 = 1;
   Vec2 a = Vec2::Zero(), b = Vec2::Zero();
-  bool too_curved = false;  // curvature above α / l_m, or not resolvable: secondary whatever happens
+  bool unfit = false;  // shorter than l_m, curvature above α / l_m, or not resolvable: secondary whatever happens
   double along = 0;         // polyline length of its input curve before it
   Kind kind = Kind::primary;
 };

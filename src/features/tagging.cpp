@@ -104,7 +104,7 @@ void tag_primary_secondary(Discretized& d, const Lengths& len) {
   std::vector<Box> boxes;
   boxes.reserve(n);
   for (int i = 0; i < n; ++i)
-    if (!d.pieces[i].too_curved) boxes.push_back(box_of(d.pieces[i].a, d.pieces[i].b, 0.5 * len.mu, i));
+    if (!d.pieces[i].unfit) boxes.push_back(box_of(d.pieces[i].a, d.pieces[i].b, 0.5 * len.mu, i));
 
   std::vector<std::vector<int>> conflicts(n);
   CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
@@ -125,7 +125,7 @@ void tag_primary_secondary(Discretized& d, const Lengths& len) {
     const CurveSection& section = d.sections[s];
     for (int i = section.first_piece; i < section.first_piece + section.piece_count; ++i) {
       Piece& p = d.pieces[i];
-      bool primary = !p.too_curved;
+      bool primary = !p.unfit;
       if (primary)
         for (const int j : conflicts[i])
           if (decided[j] && d.pieces[j].kind == Kind::primary) {

@@ -178,12 +178,12 @@ TEST(Features, DeterministicAndScaleInvariant) {
 
 TEST(Features, CurvesTooTightForAPrimaryEdgeOfLengthLmAreSecondary) {
   // A primary edge turns at most α and is at least l_m long, so curvature above α / l_m cannot be
-  // primary. d ≈ 100√2, l_m = 1e-4 d ≈ 0.0141, α / l_m ≈ 12.3; μ is made small so that only the
-  // curvature decides. A circle of radius 0.05 (curvature 20) is secondary; one of radius 0.2
-  // (curvature 5) is primary.
+  // primary. d ≈ 100√2, l_m = 1e-4 d ≈ 0.0141, α / l_m ≈ 12.3; μ = 1e-5 d is small enough for
+  // the circles to be μ-separated and large enough not to force pieces shorter than l_m. A circle
+  // of radius 0.05 (curvature 20) is secondary; one of radius 0.2 (curvature 5) is primary.
   features::Options options;
-  options.mu_rel = 1e-6;
-  options.epsilon_rel = 2e-6;
+  options.mu_rel = 1e-5;
+  options.epsilon_rel = 2e-5;
   const auto circle = [](Vec2 c, double r) {
     const double k = 0.5522847498 * r;
     return std::vector<CubicBezier>{{c + Vec2(r, 0), c + Vec2(r, k), c + Vec2(k, r), c + Vec2(0, r)},
@@ -242,6 +242,28 @@ TEST(Features, CurvesThatFoldBackKeepNoSliverBetweenPrimaryPieces) {
                                      point_segment_distance(c, a, b), point_segment_distance(e, a, b)});
         EXPECT_GE(gap, f.lengths.mu * (1 - 1e-9)) << "scale " << s << " at " << a.transpose();
       }
+    }
+  }
+}
+
+TEST(Features, PiecesShorterThanTheMinimalEdgeLengthAreSecondary) {
+  // d ≈ 100√2, l_m = 1e-4 d ≈ 0.0141: a segment of length 0.01 (straight or a gentle cubic)
+  // cannot be a primary edge; one of length 0.02 can. μ is made small so that only the length
+  // decides.
+  features::Options options;
+  options.mu_rel = 1e-6;
+  options.epsilon_rel = 2e-6;
+  for (const double length : {0.01, 0.02}) {
+    const auto f = features::process(
+        soup_of({CubicBezier::line({0, 0}, {100, 100}), CubicBezier::line({50, 20}, {50 + length, 20}),
+                 CubicBezier({20, 50}, {20 + length / 3, 50 + length / 1000},
+                             {20 + 2 * length / 3, 50 + length / 1000}, {20 + length, 50})}),
+        options);
+    ASSERT_LT(f.lengths.min_edge, 0.02);
+    ASSERT_GT(f.lengths.min_edge, 0.01);
+    for (const auto& s : f.sections) {
+      if (s.curve == 0) continue;
+      EXPECT_EQ(s.kind, length < f.lengths.min_edge ? Kind::secondary : Kind::primary) << length;
     }
   }
 }
