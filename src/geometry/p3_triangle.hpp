@@ -1,0 +1,219 @@
+#pragma once
+// The cubic (P3) triangle map of a curved element (paper §4.2, Appendix C) and the certificate
+// that it is a valid geometric map: det J > 0 everywhere on the reference triangle (DESIGN §3.5).
+//
+// Node order is Gmsh's 10-node triangle (element type 21), checked against
+// gmsh.model.mesh.getElementProperties(21). Reference coordinates (u, v):
+//   0 (0,0)     1 (1,0)     2 (0,1)                       corners
+//   3 (1/3,0)   4 (2/3,0)                                 edge 0→1, 3 nearer 0
+//   5 (2/3,1/3) 6 (1/3,2/3)                               edge 1→2, 5 nearer 1
+//   7 (0,2/3)   8 (0,1/3)                                 edge 2→0, 7 nearer 2
+//   9 (1/3,1/3)                                           centre
+// The paper's Lagrange basis ℓ0..ℓ9 (Appendix C, x = u, y = v) uses the same order.
+//
+// Triangular Bernstein form of degree n. With barycentrics λ0 = 1 − u − v, λ1 = u, λ2 = v,
+//   B_ijk(u, v) = n! / (i! j! k!) λ0^i λ1^j λ2^k,   i + j + k = n,
+// so c_n00 sits at corner 0, c_0n0 at corner 1, c_00n at corner 2, and those three coefficients
+// equal the polynomial's values there. Coefficients are stored by rows of equal k, within a row
+// by increasing j: flat index bernstein_index(n, j, k) = k (2n + 3 − k) / 2 + j.
+#include <gmpxx.h>
+
+#include <Eigen/Core>
+#include <array>
+#include <cstddef>
+
+#include "geometry/vec2.hpp"
+
+namespace curvemesh::geometry {
+
+using P3Nodes = std::array<Vec2, 10>;
+
+// A point with coordinates in any field T (double, mpq_class, ...), for the exact templates.
+template <class T>
+using PointT = std::array<T, 2>;
+template <class T>
+using P3NodesT = std::array<PointT<T>, 10>;
+
+// Number of coefficients of a degree-n triangular Bernstein polynomial.
+constexpr std::size_t bernstein_count(int n) {
+  return static_cast<std::size_t>((n + 1) * (n + 2) / 2);
+}
+constexpr std::size_t bernstein_index(int n, int j, int k) {
+  return static_cast<std::size_t>(k * (2 * n + 3 - k) / 2 + j);
+}
+
+// Reference coordinates (u, v) of node i, times 3 (so exact in integers).
+constexpr std::array<std::array<int, 2>, 10> kP3ReferenceNodesTimes3{
+    {{0, 0}, {3, 0}, {0, 3}, {1, 0}, {2, 0}, {2, 1}, {1, 2}, {0, 2}, {0, 1}, {1, 1}}};
+Vec2 p3_reference_node(int i);
+
+// Nodes of the straight triangle a, b, c: edge nodes at thirds, centre at the centroid.
+P3Nodes p3_straight_nodes(const Vec2& a, const Vec2& b, const Vec2& c);
+
+// The map x(u, v) = Σ ℓ_i(u, v) node_i and its Jacobian [∂x/∂u ∂x/∂v] at a reference point.
+Vec2 p3_map(const P3Nodes& nodes, double u, double v);
+Eigen::Matrix2d p3_jacobian(const P3Nodes& nodes, double u, double v);
+
+// Exact conversion of double nodes to rationals (every finite double is rational).
+P3NodesT<mpq_class> to_exact(const P3Nodes& nodes);
+P3NodesT<double> to_array(const P3Nodes& nodes);
+
+// ---------------------------------------------------------------------------------------------
+// Templates over the scalar type T: exact for mpq_class, ordinary rounding for double.
+
+// The Lagrange basis ℓ0..ℓ9 of Appendix C at (u, v), with s = u + v.
+template <class T>
+std::array<T, 10> p3_basis(const T& u, const T& v) {
+  const T s = u + v, one(1), n9h = T(9) / T(2);
+  return {T(-(T(3) * s - one) * (s - one) * (T(3) * s - T(2)) / T(2)),
+          T(u * (T(3) * u - one) * (T(3) * u - T(2)) / T(2)),
+          T(v * (T(3) * v - one) * (T(3) * v - T(2)) / T(2)),
+          T(n9h * u * (s - one) * (T(3) * s - T(2))),
+          T(-n9h * u * (T(3) * u - one) * (s - one)),
+          T(n9h * u * v * (T(3) * u - one)),
+          T(n9h * u * v * (T(3) * v - one)),
+          T(-n9h * v * (T(3) * v - one) * (s - one)),
+          T(n9h * v * (s - one) * (T(3) * s - T(2))),
+          T(T(-27) * u * v * (s - one))};
+}
+
+// x(u, v) = Σ ℓ_i(u, v) node_i.
+template <class T>
+PointT<T> p3_map(const P3NodesT<T>& nodes, const T& u, const T& v) {
+  const auto l = p3_basis(u, v);
+  PointT<T> x{T(0), T(0)};
+  for (int i = 0; i < 10; ++i)
+    for (int c = 0; c < 2; ++c) x[c] += l[i] * nodes[i][c];
+  return x;
+}
+
+// ∂ℓ_i/∂u and ∂ℓ_i/∂v of Appendix C's basis, with s = u + v.
+template <class T>
+std::array<std::array<T, 2>, 10> p3_basis_gradients(const T& u, const T& v) {
+  const T s = u + v, one(1), half = T(1) / T(2), n9h = T(9) / T(2);
+  const T g = T(3) * s * s - T(5) * s + T(2);  // (s − 1)(3s − 2)
+  const T dg = T(6) * s - T(5);
+  const T d0 = -half * (T(27) * s * s - T(36) * s + T(11));  // ℓ0 = −½ (3s−1)(s−1)(3s−2)
+  std::array<std::array<T, 2>, 10> d{};
+  d[0] = {d0, d0};
+  d[1] = {half * (T(27) * u * u - T(18) * u + T(2)), T(0)};
+  d[2] = {T(0), half * (T(27) * v * v - T(18) * v + T(2))};
+  d[3] = {n9h * (g + u * dg), n9h * u * dg};                             // ½·9 u g(s)
+  d[4] = {-n9h * ((T(6) * u - one) * (s - one) + u * (T(3) * u - one)),  // −½·9 u (3u−1)(s−1)
+          -n9h * u * (T(3) * u - one)};
+  d[5] = {n9h * v * (T(6) * u - one), n9h * u * (T(3) * u - one)};  // ½·9 u v (3u−1)
+  d[6] = {n9h * v * (T(3) * v - one), n9h * u * (T(6) * v - one)};  // ½·9 u v (3v−1)
+  d[7] = {-n9h * v * (T(3) * v - one),                              // −½·9 v (3v−1)(s−1)
+          -n9h * ((T(6) * v - one) * (s - one) + v * (T(3) * v - one))};
+  d[8] = {n9h * v * dg, n9h * (g + v * dg)};                                      // ½·9 v g(s)
+  d[9] = {T(-27) * v * (T(2) * u + v - one), T(-27) * u * (u + T(2) * v - one)};  // −27 u v (s−1)
+  return d;
+}
+
+// det J(u, v) from the Lagrange basis derivatives: the reference formula the Bernstein form is
+// tested against.
+template <class T>
+T p3_jacobian_det(const P3NodesT<T>& nodes, const T& u, const T& v) {
+  const auto d = p3_basis_gradients(u, v);
+  T xu(0), yu(0), xv(0), yv(0);
+  for (int i = 0; i < 10; ++i) {
+    xu += d[i][0] * nodes[i][0];
+    yu += d[i][0] * nodes[i][1];
+    xv += d[i][1] * nodes[i][0];
+    yv += d[i][1] * nodes[i][1];
+  }
+  return T(xu * yv - yu * xv);
+}
+
+// The Bézier control net of the map (degree 3, in the Bernstein order above). Corners are
+// shared; along an edge A→B with Lagrange nodes L_a (at 1/3) and L_b (at 2/3) the cubic
+// interpolation conditions give the control point next to A as (−5A + 18L_a − 9L_b + 2B) / 6;
+// the centre follows from x(⅓,⅓) = (Σ corners + 3 Σ edge controls + 6 P_111) / 27.
+// Gmsh node → control index (i, j, k): 0→300, 1→030, 2→003, 3→210, 4→120, 5→021, 6→012,
+// 7→102, 8→201, 9→111.
+template <class T>
+std::array<PointT<T>, 10> p3_control_net(const P3NodesT<T>& n) {
+  auto near_a = [](const PointT<T>& a, const PointT<T>& la, const PointT<T>& lb, const PointT<T>& b) {
+    PointT<T> p;
+    for (int c = 0; c < 2; ++c) p[c] = T((T(-5) * a[c] + T(18) * la[c] - T(9) * lb[c] + T(2) * b[c]) / T(6));
+    return p;
+  };
+  std::array<PointT<T>, 10> P;
+  // at(i, j, k) names the control point by its full index; i = 3 − j − k is implied.
+  auto at = [&]([[maybe_unused]] int i, int j, int k) -> PointT<T>& { return P[bernstein_index(3, j, k)]; };
+  at(3, 0, 0) = n[0];
+  at(0, 3, 0) = n[1];
+  at(0, 0, 3) = n[2];
+  at(2, 1, 0) = near_a(n[0], n[3], n[4], n[1]);
+  at(1, 2, 0) = near_a(n[1], n[4], n[3], n[0]);
+  at(0, 2, 1) = near_a(n[1], n[5], n[6], n[2]);
+  at(0, 1, 2) = near_a(n[2], n[6], n[5], n[1]);
+  at(1, 0, 2) = near_a(n[2], n[7], n[8], n[0]);
+  at(2, 0, 1) = near_a(n[0], n[8], n[7], n[2]);
+  for (int c = 0; c < 2; ++c) {
+    T rest = n[0][c] + n[1][c] + n[2][c];
+    for (const PointT<T>* e :
+         {&at(2, 1, 0), &at(1, 2, 0), &at(0, 2, 1), &at(0, 1, 2), &at(1, 0, 2), &at(2, 0, 1)})
+      rest += T(3) * (*e)[c];
+    at(1, 1, 1)[c] = T((T(27) * n[9][c] - rest) / T(6));
+  }
+  return P;
+}
+
+// Multinomial n! / (i! j! k!) for n ≤ 4.
+constexpr int multinomial(int i, int j, int k) {
+  constexpr int f[5] = {1, 1, 2, 6, 24};
+  return f[i + j + k] / (f[i] * f[j] * f[k]);
+}
+
+// det J as a degree-4 Bernstein polynomial (15 coefficients), exact for exact T.
+// ∂x/∂u = 3 Σ (P_α+e1 − P_α+e0) B²_α and ∂x/∂v = 3 Σ (P_α+e2 − P_α+e0) B²_α; the product
+// B²_α B²_β = [C(α) C(β) / C(α+β)] B⁴_α+β with C the multinomial.
+template <class T>
+std::array<T, 15> p3_jacobian_det_bernstein(const P3NodesT<T>& nodes) {
+  const auto P = p3_control_net(nodes);
+  std::array<PointT<T>, 6> du, dv;  // degree-2 nets, without the factor 3
+  for (int k = 0; k <= 2; ++k)
+    for (int j = 0; j + k <= 2; ++j) {
+      const auto& p0 = P[bernstein_index(3, j, k)];  // α + e0
+      const auto& p1 = P[bernstein_index(3, j + 1, k)];
+      const auto& p2 = P[bernstein_index(3, j, k + 1)];
+      for (int c = 0; c < 2; ++c) {
+        du[bernstein_index(2, j, k)][c] = T(p1[c] - p0[c]);
+        dv[bernstein_index(2, j, k)][c] = T(p2[c] - p0[c]);
+      }
+    }
+  std::array<T, 15> sum;
+  sum.fill(T(0));
+  for (int ka = 0; ka <= 2; ++ka)
+    for (int ja = 0; ja + ka <= 2; ++ja)
+      for (int kb = 0; kb <= 2; ++kb)
+        for (int jb = 0; jb + kb <= 2; ++jb) {
+          const auto& a = du[bernstein_index(2, ja, ka)];
+          const auto& b = dv[bernstein_index(2, jb, kb)];
+          const int w = multinomial(2 - ja - ka, ja, ka) * multinomial(2 - jb - kb, jb, kb);
+          sum[bernstein_index(4, ja + jb, ka + kb)] += T(w) * T(a[0] * b[1] - a[1] * b[0]);
+        }
+  for (int k = 0; k <= 4; ++k)
+    for (int j = 0; j + k <= 4; ++j) {
+      T& s = sum[bernstein_index(4, j, k)];
+      s = T(T(9) * s / T(multinomial(4 - j - k, j, k)));
+    }
+  return sum;
+}
+
+// Value of a degree-n Bernstein polynomial at (u, v), by de Casteljau's algorithm.
+template <class T, std::size_t N>
+T bernstein_eval(const std::array<T, N>& c, int n, const T& u, const T& v) {
+  std::array<T, N> net = c;
+  const T l0 = T(1) - u - v;
+  for (int m = n; m > 0; --m)  // degree m → m − 1, in place (row-major order keeps reads ahead)
+    for (int k = 0; k < m; ++k)
+      for (int j = 0; j + k < m; ++j)
+        net[bernstein_index(m - 1, j, k)] =
+            T(l0 * net[bernstein_index(m, j, k)] + u * net[bernstein_index(m, j + 1, k)] +
+              v * net[bernstein_index(m, j, k + 1)]);
+  return net[0];
+}
+
+}  // namespace curvemesh::geometry

@@ -1,0 +1,161 @@
+// The cubic triangle map against Gmsh's node order and its own definition, and the Bernstein form
+// of det J against the analytic derivative (exactly, on rationals).
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "geometry/p3_triangle.hpp"
+
+namespace curvemesh::geometry {
+namespace {
+
+// The unit right triangle with edge 0→1 replaced by a circular arc of sagitta h (h > 0 bows into
+// the element). The centre node stays at the centroid.
+P3Nodes arc_element(double h) {
+  P3Nodes n = p3_straight_nodes(Vec2(0, 0), Vec2(1, 0), Vec2(0, 1));
+  const double r = (0.25 + h * h) / (2 * std::abs(h));
+  const Vec2 centre(0.5, h > 0 ? h - r : r + h);  // the arc's apex is at (0.5, h)
+  const double a0 = std::atan2(-centre.y(), -centre.x()), a1 = std::atan2(-centre.y(), 1 - centre.x());
+  double sweep = a1 - a0;
+  if (sweep > M_PI) sweep -= 2 * M_PI;
+  if (sweep < -M_PI) sweep += 2 * M_PI;
+  for (int t = 1; t <= 2; ++t)
+    n[2 + t] = centre + r * Vec2(std::cos(a0 + sweep * t / 3), std::sin(a0 + sweep * t / 3));
+  return n;
+}
+
+// A canonical rational (GMP's arithmetic needs canonical operands).
+mpq_class rational(int num, int den) {
+  mpq_class q(num, den);
+  q.canonicalize();
+  return q;
+}
+
+TEST(P3NodeOrder, MatchesGmshTriangle10) {
+  FILE* pipe = popen(
+      "/usr/bin/python3 -c \"import gmsh; gmsh.initialize(); "
+      "print(*gmsh.model.mesh.getElementProperties(21)[4]); gmsh.finalize()\" 2>/dev/null",
+      "r");
+  ASSERT_NE(pipe, nullptr);
+  std::vector<double> coords;
+  double x;
+  while (std::fscanf(pipe, "%lf", &x) == 1) coords.push_back(x);
+  pclose(pipe);
+  if (coords.size() != 20) GTEST_SKIP() << "python3-gmsh not available";
+  for (int i = 0; i < 10; ++i) {
+    EXPECT_NEAR(p3_reference_node(i).x(), coords[2 * i], 1e-12) << "node " << i;
+    EXPECT_NEAR(p3_reference_node(i).y(), coords[2 * i + 1], 1e-12) << "node " << i;
+  }
+}
+
+TEST(P3Map, InterpolatesItsNodesExactly) {
+  std::mt19937 rng(1);
+  std::uniform_int_distribution<int> num(-50, 50);
+  for (int trial = 0; trial < 20; ++trial) {
+    P3NodesT<mpq_class> n;
+    for (auto& p : n) p = {rational(num(rng), 7), rational(num(rng), 11)};
+    for (int i = 0; i < 10; ++i) {
+      const mpq_class u = rational(kP3ReferenceNodesTimes3[i][0], 3),
+                      v = rational(kP3ReferenceNodesTimes3[i][1], 3);
+      const auto x = p3_map(n, u, v);
+      EXPECT_EQ(x[0], n[i][0]) << "node " << i;
+      EXPECT_EQ(x[1], n[i][1]) << "node " << i;
+    }
+  }
+  const P3Nodes d = arc_element(0.1);
+  for (int i = 0; i < 10; ++i)
+    EXPECT_LT((p3_map(d, p3_reference_node(i).x(), p3_reference_node(i).y()) - d[i]).norm(), 1e-14);
+}
+
+TEST(P3Map, JacobianMatchesFiniteDifferences) {
+  const P3Nodes n = arc_element(-0.2);
+  const double h = 1e-6;
+  for (const Vec2& p : {Vec2(0.2, 0.3), Vec2(0.7, 0.1), Vec2(0.05, 0.9)}) {
+    const Eigen::Matrix2d J = p3_jacobian(n, p.x(), p.y());
+    const Vec2 du = (p3_map(n, p.x() + h, p.y()) - p3_map(n, p.x() - h, p.y())) / (2 * h);
+    const Vec2 dv = (p3_map(n, p.x(), p.y() + h) - p3_map(n, p.x(), p.y() - h)) / (2 * h);
+    EXPECT_LT((J.col(0) - du).norm(), 1e-8);
+    EXPECT_LT((J.col(1) - dv).norm(), 1e-8);
+  }
+}
+
+TEST(P3Straight, ConstantJacobianIsTwiceTheArea) {
+  const Vec2 a(0.5, -1), b(3, 0.25), c(1, 2);
+  const mpq_class twice_area = (mpq_class(b.x()) - a.x()) * (mpq_class(c.y()) - a.y()) -
+                               (mpq_class(b.y()) - a.y()) * (mpq_class(c.x()) - a.x());
+  ASSERT_GT(twice_area, 0);
+  // The straight nodes at thirds are not exact in double; build them exactly.
+  P3NodesT<mpq_class> exact;
+  const std::array<std::array<int, 3>, 10> weights{{{3, 0, 0},
+                                                    {0, 3, 0},
+                                                    {0, 0, 3},
+                                                    {2, 1, 0},
+                                                    {1, 2, 0},
+                                                    {0, 2, 1},
+                                                    {0, 1, 2},
+                                                    {1, 0, 2},
+                                                    {2, 0, 1},
+                                                    {1, 1, 1}}};
+  for (int i = 0; i < 10; ++i)
+    for (int k = 0; k < 2; ++k)
+      exact[i][k] = (weights[i][0] * mpq_class(a[k]) + weights[i][1] * mpq_class(b[k]) +
+                     weights[i][2] * mpq_class(c[k])) /
+                    3;
+  for (const mpq_class& coefficient : p3_jacobian_det_bernstein(exact)) EXPECT_EQ(coefficient, twice_area);
+
+  const P3Nodes n = p3_straight_nodes(a, b, c);
+  for (double coefficient : p3_jacobian_det_bernstein(to_array(n)))
+    EXPECT_NEAR(coefficient, twice_area.get_d(), 1e-13 * twice_area.get_d());
+}
+
+TEST(P3Bernstein, AgreesWithTheDerivativeAtRandomPoints) {
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> coord(-1, 1), unit(0, 1);
+  for (int trial = 0; trial < 200; ++trial) {
+    P3NodesT<double> n;
+    double scale = 0;
+    for (auto& p : n) {
+      p = {coord(rng), coord(rng)};
+      scale = std::max({scale, std::abs(p[0]), std::abs(p[1])});
+    }
+    const auto coefficients = p3_jacobian_det_bernstein(n);
+    for (int k = 0; k < 20; ++k) {
+      double u = unit(rng), v = unit(rng);
+      if (u + v > 1) u = 1 - u, v = 1 - v;
+      EXPECT_NEAR(bernstein_eval(coefficients, 4, u, v), p3_jacobian_det(n, u, v), 1e-11 * scale * scale);
+    }
+  }
+}
+
+TEST(P3Bernstein, AgreesExactlyAtRationalPoints) {
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> num(-100, 100), den(1, 30);
+  for (int trial = 0; trial < 50; ++trial) {
+    P3NodesT<mpq_class> n;
+    for (auto& p : n) p = {rational(num(rng), den(rng)), rational(num(rng), den(rng))};
+    const auto coefficients = p3_jacobian_det_bernstein(n);
+    const auto net = p3_control_net(n);
+    std::array<mpq_class, 10> net_x, net_y;
+    for (int i = 0; i < 10; ++i) net_x[i] = net[i][0], net_y[i] = net[i][1];
+    for (int k = 0; k < 10; ++k) {
+      const int d = den(rng);
+      std::uniform_int_distribution<int> a(0, d);
+      const int iu = a(rng);
+      const mpq_class u = rational(iu, d),
+                      v = rational(std::uniform_int_distribution<int>(0, d - iu)(rng), d);
+      EXPECT_EQ(bernstein_eval(coefficients, 4, u, v), p3_jacobian_det(n, u, v));
+      // The control net is the same cubic map as the Lagrange nodes.
+      const auto x = p3_map(n, u, v);
+      EXPECT_EQ(bernstein_eval(net_x, 3, u, v), x[0]);
+      EXPECT_EQ(bernstein_eval(net_y, 3, u, v), x[1]);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace curvemesh::geometry
