@@ -216,4 +216,39 @@ T bernstein_eval(const std::array<T, N>& c, int n, const T& u, const T& v) {
   return net[0];
 }
 
+// ---------------------------------------------------------------------------------------------
+// Certification of det J > 0 on the whole reference triangle.
+
+enum class JacobianVerdict { positive, not_positive, undecided };
+
+struct JacobianCheckOptions {
+  int max_depth = 10;           // levels of 4-way subdivision before giving up
+  int max_subtriangles = 4096;  // work budget: sub-triangles examined before giving up
+};
+
+// Exact: all 15 Bernstein coefficients > 0 → positive; a value ≤ 0 at a corner of the element or
+// of any sub-triangle examined → not_positive; otherwise split into 4 at the edge midpoints (exact
+// de Casteljau subdivision) and recurse; undecided when the depth or work limit is reached.
+JacobianVerdict certify_jacobian_exact(const P3NodesT<mpq_class>& nodes,
+                                       const JacobianCheckOptions& options = {});
+JacobianVerdict certify_jacobian_exact(const P3Nodes& nodes, const JacobianCheckOptions& options = {});
+
+struct JacobianCertificate {
+  JacobianVerdict verdict = JacobianVerdict::undecided;
+  double min_coefficient = 0;  // smallest of the element's 15 coefficients: a lower bound on det J
+  double max_coefficient = 0;  // largest of them: an upper bound on det J
+  double min_value = 0;        // smallest det J found (15 lattice points, sub-triangle corners):
+                               // an upper bound on min det J
+  double scaled_jacobian = 0;  // min_value / max_coefficient (1 for a straight triangle, ≤ 0 when
+                               // invalid; −∞ when max_coefficient ≤ 0)
+  int subtriangles = 0;        // sub-triangles examined, the element itself included
+};
+
+// The same algorithm in double, conservative both ways: every quantity carries a rigorous bound
+// on its accumulated rounding error, computed from the magnitudes involved, so a coefficient is
+// positive only when it exceeds its own error bound (and a value is ≤ 0 only when it is below
+// minus its bound). The nodes are first taken relative to node 0, so the bounds scale with the
+// element's size squared: the verdict does not depend on where the element is or on its scale.
+JacobianCertificate certify_jacobian(const P3Nodes& nodes, const JacobianCheckOptions& options = {});
+
 }  // namespace curvemesh::geometry

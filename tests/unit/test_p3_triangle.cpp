@@ -1,5 +1,6 @@
-// The cubic triangle map against Gmsh's node order and its own definition, and the Bernstein form
-// of det J against the analytic derivative (exactly, on rationals).
+// The cubic triangle map against Gmsh's node order and its own definition, the Bernstein form of
+// det J against the analytic derivative (exactly, on rationals), and the positive-Jacobian
+// certificate on elements whose validity is known by construction or by dense sampling.
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
@@ -13,6 +14,16 @@
 
 namespace curvemesh::geometry {
 namespace {
+
+// Smallest det J on a dense grid of the reference triangle, from the Lagrange derivative
+// (independent of the Bernstein form).
+double sampled_min_det(const P3Nodes& n, int steps = 300) {
+  double m = std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= steps; ++i)
+    for (int j = 0; i + j <= steps; ++j)
+      m = std::min(m, p3_jacobian(n, double(i) / steps, double(j) / steps).determinant());
+  return m;
+}
 
 // The unit right triangle with edge 0→1 replaced by a circular arc of sagitta h (h > 0 bows into
 // the element). The centre node stays at the centroid.
@@ -34,6 +45,12 @@ mpq_class rational(int num, int den) {
   mpq_class q(num, den);
   q.canonicalize();
   return q;
+}
+
+P3Nodes transformed(const P3Nodes& n, double scale, const Vec2& shift) {
+  P3Nodes out;
+  for (int i = 0; i < 10; ++i) out[i] = n[i] * scale + shift;
+  return out;
 }
 
 TEST(P3NodeOrder, MatchesGmshTriangle10) {
@@ -107,10 +124,20 @@ TEST(P3Straight, ConstantJacobianIsTwiceTheArea) {
                      weights[i][2] * mpq_class(c[k])) /
                     3;
   for (const mpq_class& coefficient : p3_jacobian_det_bernstein(exact)) EXPECT_EQ(coefficient, twice_area);
+  EXPECT_EQ(certify_jacobian_exact(exact), JacobianVerdict::positive);
 
   const P3Nodes n = p3_straight_nodes(a, b, c);
   for (double coefficient : p3_jacobian_det_bernstein(to_array(n)))
     EXPECT_NEAR(coefficient, twice_area.get_d(), 1e-13 * twice_area.get_d());
+  const auto cert = certify_jacobian(n);
+  EXPECT_EQ(cert.verdict, JacobianVerdict::positive);
+  EXPECT_EQ(cert.subtriangles, 1);
+  EXPECT_NEAR(cert.scaled_jacobian, 1.0, 1e-12);
+
+  const P3Nodes cw = p3_straight_nodes(a, c, b);
+  EXPECT_EQ(certify_jacobian_exact(cw), JacobianVerdict::not_positive);
+  EXPECT_EQ(certify_jacobian(cw).verdict, JacobianVerdict::not_positive);
+  EXPECT_LT(certify_jacobian(cw).scaled_jacobian, 0);
 }
 
 TEST(P3Bernstein, AgreesWithTheDerivativeAtRandomPoints) {
@@ -155,6 +182,107 @@ TEST(P3Bernstein, AgreesExactlyAtRationalPoints) {
       EXPECT_EQ(bernstein_eval(net_y, 3, u, v), x[1]);
     }
   }
+}
+
+TEST(P3Certify, ModeratelyCurvedEdgesArePositive) {
+  for (double h : {-0.2, -0.1, 0.05, 0.1}) {
+    const P3Nodes n = arc_element(h);
+    ASSERT_GT(sampled_min_det(n), 0);
+    EXPECT_EQ(certify_jacobian_exact(n), JacobianVerdict::positive) << h;
+    const auto cert = certify_jacobian(n);
+    EXPECT_EQ(cert.verdict, JacobianVerdict::positive) << h;
+    EXPECT_GT(cert.min_coefficient, 0);
+    EXPECT_GT(cert.scaled_jacobian, 0);
+    EXPECT_LE(cert.scaled_jacobian, 1);
+  }
+}
+
+TEST(P3Certify, EdgeNodeAcrossTheOppositeSideFolds) {
+  P3Nodes n = p3_straight_nodes(Vec2(0, 0), Vec2(1, 0), Vec2(0, 1));
+  n[3] = Vec2(1.0 / 3, 1.2);  // beyond the edge 1→2 (x + y = 1)
+  ASSERT_LT(sampled_min_det(n), 0);
+  EXPECT_EQ(certify_jacobian_exact(n), JacobianVerdict::not_positive);
+  const auto cert = certify_jacobian(n);
+  EXPECT_EQ(cert.verdict, JacobianVerdict::not_positive);
+  EXPECT_LT(cert.min_value, 0);
+}
+
+TEST(P3Certify, FoldInsideIsFoundBySubdivision) {
+  // The corner values depend on the edge nodes only: moving the centre far out keeps them
+  // positive and folds the inside.
+  P3Nodes n = p3_straight_nodes(Vec2(0, 0), Vec2(1, 0), Vec2(0, 1));
+  n[9] = Vec2(1.2, 1.2);
+  ASSERT_LT(sampled_min_det(n), 0);
+  const auto coefficients = p3_jacobian_det_bernstein(to_exact(n));
+  for (int corner : {0, 1, 2})
+    EXPECT_GT(coefficients[bernstein_index(4, corner == 1 ? 4 : 0, corner == 2 ? 4 : 0)], 0);
+  EXPECT_EQ(certify_jacobian_exact(n), JacobianVerdict::not_positive);
+  const auto cert = certify_jacobian(n);
+  EXPECT_EQ(cert.verdict, JacobianVerdict::not_positive);
+  EXPECT_GT(cert.subtriangles, 0);  // decided below the element itself
+}
+
+TEST(P3Certify, BorderlineElementNeedsSubdivision) {
+  for (double h : {0.16, 0.175, 0.185}) {
+    const P3Nodes n = arc_element(h);
+    const auto coefficients = p3_jacobian_det_bernstein(to_exact(n));
+    EXPECT_TRUE(std::any_of(coefficients.begin(), coefficients.end(), [](const mpq_class& c) {
+      return c < 0;
+    })) << h;
+    EXPECT_GT(sampled_min_det(n, 600), 0) << h;
+    EXPECT_EQ(certify_jacobian_exact(n), JacobianVerdict::positive) << h;
+    const auto cert = certify_jacobian(n);
+    EXPECT_EQ(cert.verdict, JacobianVerdict::positive) << h;
+    EXPECT_GT(cert.subtriangles, 1);
+    EXPECT_LT(cert.min_coefficient, 0);
+    EXPECT_GT(cert.scaled_jacobian, 0);
+    // Without subdivision nothing can be decided.
+    EXPECT_EQ(certify_jacobian_exact(n, {.max_depth = 0}), JacobianVerdict::undecided);
+    EXPECT_EQ(certify_jacobian(n, {.max_depth = 0}).verdict, JacobianVerdict::undecided);
+  }
+}
+
+TEST(P3Certify, ZeroAtACornerIsNotPositive) {
+  // Edge 0→1 from (0,0) to (4.5,0) with its nodes placed so that the Bézier control next to
+  // corner 0 is (18·(0.5,0.5) − 9·(2,0) + 2·(4.5,0)) / 6 = (0, 1.5): the tangent there is
+  // parallel to edge 2→0, so det J = 0 exactly at corner 0.
+  P3Nodes n = p3_straight_nodes(Vec2(0, 0), Vec2(4.5, 0), Vec2(0, 4.5));
+  n[3] = Vec2(0.5, 0.5);
+  n[4] = Vec2(2, 0);
+  const auto coefficients = p3_jacobian_det_bernstein(to_exact(n));
+  EXPECT_EQ(coefficients[bernstein_index(4, 0, 0)], 0);
+  EXPECT_EQ(certify_jacobian_exact(n), JacobianVerdict::not_positive);
+  // In double the zero is within the rounding bound: never positive, at best undecided.
+  EXPECT_NE(certify_jacobian(n).verdict, JacobianVerdict::positive);
+}
+
+// Random perturbations of a curved element: the double certificate must reach the exact verdict,
+// whatever the element's size or position.
+TEST(P3Certify, DoubleAgreesWithExactAtAnyScale) {
+  const P3Nodes reference = arc_element(0.1);
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> noise(-0.1, 0.1);
+  int counts[3] = {0, 0, 0}, subdivided = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    P3Nodes n = reference;
+    for (auto& p : n) p += Vec2(noise(rng), noise(rng));
+    const JacobianVerdict exact = certify_jacobian_exact(n);
+    ++counts[static_cast<int>(exact)];
+    if (exact == JacobianVerdict::undecided) continue;
+    const auto cert = certify_jacobian(n);
+    const JacobianVerdict verdict = cert.verdict;
+    subdivided += cert.subtriangles > 1;
+    ASSERT_EQ(verdict, exact) << "trial " << trial;
+    for (double scale : {1e-6, 1e6})
+      EXPECT_EQ(certify_jacobian(transformed(n, scale, Vec2::Zero())).verdict, verdict);
+    EXPECT_EQ(certify_jacobian(transformed(n, 1.0, Vec2(1e6, -1e6))).verdict, verdict) << "trial " << trial;
+    EXPECT_EQ(certify_jacobian(transformed(n, 1e-6, Vec2(1, 1))).verdict, verdict) << "trial " << trial;
+  }
+  // Both verdicts are well represented; undecided is rare.
+  EXPECT_GT(counts[static_cast<int>(JacobianVerdict::positive)], 300);
+  EXPECT_GT(counts[static_cast<int>(JacobianVerdict::not_positive)], 300);
+  EXPECT_LT(counts[static_cast<int>(JacobianVerdict::undecided)], 5);
+  EXPECT_GT(subdivided, 100);  // many were decided only below the element's own coefficients
 }
 
 }  // namespace
