@@ -1,0 +1,404 @@
+#include "io/msh_reader.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <unordered_map>
+#include <vector>
+
+namespace curvemesh::io {
+
+namespace {
+
+struct Section {
+  std::string name;
+  std::string_view body;  // the lines between $name and $Endname
+  long first_line;        // line number of body's first line
+};
+
+[[noreturn]] void fail(long line, const std::string& section, const std::string& message) {
+  throw MshError("line " + std::to_string(line) + ": $" + section + ": " + message);
+}
+
+std::string quoted(std::string_view word) {
+  std::string out;
+  for (char c : word.substr(0, 40))
+    out += (c >= 32 && c < 127) ? c : '?';  // a binary file must not end up in a message
+  return "'" + out + (word.size() > 40 ? "...'" : "'");
+}
+
+// The whitespace-separated words of a section, with the line each one is on.
+class Tokens {
+ public:
+  explicit Tokens(const Section& s) : s_(s), line_(s.first_line) {}
+
+  [[noreturn]] void fail(const std::string& message) const { io::fail(line_, s_.name, message); }
+
+  bool at_end() {
+    skip_space();
+    return at_ >= s_.body.size();
+  }
+  std::string_view word() {
+    if (at_end()) fail("ends too early");
+    const std::size_t start = at_;
+    while (at_ < s_.body.size() && !is_space(s_.body[at_])) ++at_;
+    return s_.body.substr(start, at_ - start);
+  }
+  long long integer(const char* what) {
+    const std::string_view w = word();
+    long long v = 0;
+    const auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
+    if (ec != std::errc() || end != w.data() + w.size())
+      fail(std::string("expected an integer (") + what + "), found " + quoted(w));
+    return v;
+  }
+  // A count of things that follow: at least 0, and small enough to index them with an int.
+  int count(const char* what) {
+    const long long v = integer(what);
+    if (v < 0 || v > INT_MAX) fail(std::string(what) + " " + std::to_string(v) + " is out of range");
+    return static_cast<int>(v);
+  }
+  long long positive(const char* what) {
+    const long long v = integer(what);
+    if (v <= 0) fail(std::string(what) + " " + std::to_string(v) + " is not positive");
+    return v;
+  }
+  double real(const char* what) {
+    const std::string_view w = word();
+    double v = 0;
+    const auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
+    if ((ec != std::errc() && ec != std::errc::result_out_of_range) || end != w.data() + w.size())
+      fail(std::string("expected a number (") + what + "), found " + quoted(w));
+    if (ec == std::errc::result_out_of_range || !std::isfinite(v))
+      fail(std::string(what) + " " + quoted(w) + " is not a finite number");
+    return v;
+  }
+  // A name in double quotes, which may hold spaces but not a line break.
+  std::string name() {
+    if (at_end() || s_.body[at_] != '"') fail("expected a name in double quotes");
+    const std::size_t close = s_.body.find_first_of("\"\n", at_ + 1);
+    if (close == std::string_view::npos || s_.body[close] != '"')
+      fail("a name has no closing quote on its line");
+    std::string out(s_.body.substr(at_ + 1, close - at_ - 1));
+    at_ = close + 1;
+    return out;
+  }
+  void expect_end() {
+    if (!at_end()) fail("more data than its header announces, starting with " + quoted(word()));
+  }
+
+ private:
+  static bool is_space(char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
+  }
+  void skip_space() {
+    while (at_ < s_.body.size() && is_space(s_.body[at_])) line_ += s_.body[at_++] == '\n';
+  }
+
+  const Section& s_;
+  std::size_t at_ = 0;
+  long line_;
+};
+
+struct ElementKind {
+  int dim;    // 0 point, 1 line, 2 triangle
+  int order;  // 0 for points
+  int nodes;
+};
+
+std::optional<ElementKind> element_kind(long long type) {
+  switch (type) {
+    case 15:
+      return ElementKind{0, 0, 1};
+    case 1:
+      return ElementKind{1, 1, 2};
+    case 8:
+      return ElementKind{1, 2, 3};
+    case 26:
+      return ElementKind{1, 3, 4};
+    case 2:
+      return ElementKind{2, 1, 3};
+    case 9:
+      return ElementKind{2, 2, 6};
+    case 21:
+      return ElementKind{2, 3, 10};
+    default:
+      return std::nullopt;
+  }
+}
+
+class Reader {
+ public:
+  explicit Reader(std::string_view text) { split(text); }
+
+  HighOrderMesh read() {
+    const auto format = sections_.find("MeshFormat");
+    if (format == sections_.end()) throw MshError("no $MeshFormat section: not a Gmsh .msh file");
+    mesh_.physical_names.clear();
+    if (auto s = sections_.find("PhysicalNames"); s != sections_.end()) physical_names(s->second);
+    for (const char* required : {"Nodes", "Elements"})
+      if (sections_.find(required) == sections_.end())
+        throw MshError(std::string("no $") + required + " section");
+    if (version_ == 41) {
+      if (auto s = sections_.find("Entities"); s != sections_.end()) entities(s->second);
+      nodes41(sections_.at("Nodes"));
+      elements41(sections_.at("Elements"));
+    } else {
+      nodes22(sections_.at("Nodes"));
+      elements22(sections_.at("Elements"));
+    }
+    finish();
+    return std::move(mesh_);
+  }
+
+ private:
+  // Cuts the text into sections; checks $MeshFormat as soon as it is closed, so that a binary
+  // file is refused before its data is looked at.
+  void split(std::string_view text) {
+    std::optional<Section> open;
+    std::size_t open_body = 0;
+    long line = 0;
+    for (std::size_t at = 0; at < text.size();) {
+      std::size_t end = text.find('\n', at);
+      if (end == std::string_view::npos) end = text.size();
+      ++line;
+      std::string_view l = text.substr(at, end - at);
+      while (!l.empty() && (l.back() == '\r' || l.back() == ' ' || l.back() == '\t')) l.remove_suffix(1);
+      while (!l.empty() && (l.front() == ' ' || l.front() == '\t')) l.remove_prefix(1);
+      if (!l.empty() && l.front() == '$') {
+        if (l.substr(0, 4) == "$End") {
+          if (!open || l.substr(4) != open->name)
+            fail(line, open ? open->name : std::string(l.substr(4)), "unexpected " + quoted(l));
+          open->body = text.substr(open_body, at - open_body);
+          if (sections_.count(open->name)) fail(line, open->name, "the section appears twice");
+          if (open->name == "MeshFormat") mesh_format(*open);
+          sections_.emplace(open->name, *open);
+          open.reset();
+        } else {
+          if (open) fail(line, open->name, "not closed before " + quoted(l));
+          if (sections_.empty() && l != "$MeshFormat")
+            throw MshError("line " + std::to_string(line) + ": the file does not start with $MeshFormat");
+          open = Section{std::string(l.substr(1)), {}, line + 1};
+          open_body = std::min(end + 1, text.size());
+        }
+      }
+      at = end + 1;
+    }
+    if (open) fail(line, open->name, "not closed: the file ends inside it");
+  }
+
+  void mesh_format(const Section& s) {
+    Tokens t(s);
+    const std::string_view version = t.word();
+    if (version == "4.1") {
+      version_ = 41;
+    } else if (version == "2.2") {
+      version_ = 22;
+    } else {
+      t.fail("version " + quoted(version) + " is not supported (ASCII 4.1 and 2.2 are)");
+    }
+    if (t.integer("file type") != 0) t.fail("binary .msh files are not supported (write ASCII)");
+    t.integer("data size");
+  }
+
+  void physical_names(const Section& s) {
+    Tokens t(s);
+    const int n = t.count("number of physical names");
+    for (int i = 0; i < n; ++i) {
+      const long long dim = t.integer("dimension");
+      const long long tag = t.integer("physical tag");
+      std::string name = t.name();
+      if ((dim == 1 || dim == 2) && tag > 0 && tag <= INT_MAX)
+        mesh_.physical_names[{int(dim), int(tag)}] = std::move(name);
+    }
+    t.expect_end();
+  }
+
+  void entities(const Section& s) {
+    Tokens t(s);
+    int counts[4];
+    for (int& c : counts) c = t.count("number of entities");
+    for (int dim = 0; dim < 4; ++dim)
+      for (int i = 0; i < counts[dim]; ++i) {
+        const long long tag = t.integer("entity tag");
+        for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) t.real("entity coordinate");
+        const int physicals = t.count("number of physical tags");
+        long long first = 0;
+        for (int k = 0; k < physicals; ++k) {
+          const long long p = t.integer("physical tag");
+          if (k == 0) first = p;
+        }
+        if (first < 0 || first > INT_MAX)
+          t.fail("physical tag " + std::to_string(first) + " is out of range");
+        entity_physical_[{dim, tag}] = static_cast<int>(first);
+        if (dim > 0) {
+          const int bounding = t.count("number of bounding entities");
+          for (int k = 0; k < bounding; ++k) t.integer("bounding entity tag");
+        }
+      }
+    t.expect_end();
+  }
+
+  void add_node(Tokens& t, long long tag) {
+    const double x = t.real("x"), y = t.real("y"), z = t.real("z");
+    if (z != 0)
+      t.fail("node " + std::to_string(tag) + " has z = " + std::to_string(z) + ": not a planar mesh");
+    if (!node_index_.emplace(tag, static_cast<int>(mesh_.nodes.size())).second)
+      t.fail("node " + std::to_string(tag) + " is defined twice");
+    if (mesh_.nodes.size() >= std::size_t(INT_MAX)) t.fail("too many nodes");
+    mesh_.nodes.emplace_back(x, y);
+  }
+
+  void nodes41(const Section& s) {
+    Tokens t(s);
+    const int blocks = t.count("number of node blocks");
+    const int total = t.count("number of nodes");
+    t.integer("minimum node tag");
+    t.integer("maximum node tag");
+    std::vector<long long> tags;
+    for (int b = 0; b < blocks; ++b) {
+      t.integer("entity dimension");
+      t.integer("entity tag");
+      const long long parametric = t.integer("parametric flag");
+      if (parametric != 0)
+        t.fail("node block " + std::to_string(b + 1) + " has parametric nodes, which are not supported");
+      const int n = t.count("number of nodes in the block");
+      tags.clear();
+      for (int i = 0; i < n; ++i) tags.push_back(t.positive("node tag"));
+      for (long long tag : tags) add_node(t, tag);
+    }
+    if (static_cast<long long>(mesh_.nodes.size()) != total)
+      t.fail("the header announces " + std::to_string(total) + " nodes, the blocks hold " +
+             std::to_string(mesh_.nodes.size()));
+    t.expect_end();
+  }
+
+  void nodes22(const Section& s) {
+    Tokens t(s);
+    const int n = t.count("number of nodes");
+    for (int i = 0; i < n; ++i) add_node(t, t.positive("node tag"));
+    t.expect_end();
+  }
+
+  // Reads the node tags of one element of `type` and files it by kind.
+  void element(Tokens& t, long long tag, long long type, int physical) {
+    const std::optional<ElementKind> kind = element_kind(type);
+    if (!kind)
+      t.fail("element " + std::to_string(tag) + " has type " + std::to_string(type) +
+             ", not a triangle (2, 9, 21), line (1, 8, 26) or point (15)");
+    if (physical < 0) t.fail("element " + std::to_string(tag) + " has a negative physical tag");
+    scratch_.clear();
+    for (int k = 0; k < kind->nodes; ++k) {
+      const long long node = t.integer("node tag");
+      const auto found = node_index_.find(node);
+      if (found == node_index_.end())
+        t.fail("element " + std::to_string(tag) + " refers to node " + std::to_string(node) +
+               ", which $Nodes does not define");
+      scratch_.push_back(found->second);
+    }
+    if (kind->dim == 2) {
+      if (triangle_order_ != 0 && triangle_order_ != kind->order)
+        t.fail("element " + std::to_string(tag) + " is a triangle of order " + std::to_string(kind->order) +
+               " but earlier triangles have order " + std::to_string(triangle_order_) +
+               ": mixed orders are not supported");
+      triangle_order_ = kind->order;
+      mesh_.triangles.insert(mesh_.triangles.end(), scratch_.begin(), scratch_.end());
+      mesh_.triangle_physical.push_back(physical);
+    } else if (kind->dim == 1) {
+      if (line_order_ != 0 && line_order_ != kind->order)
+        t.fail("element " + std::to_string(tag) + " is a line of order " + std::to_string(kind->order) +
+               " but earlier lines have order " + std::to_string(line_order_) +
+               ": mixed orders are not supported");
+      line_order_ = kind->order;
+      mesh_.lines.insert(mesh_.lines.end(), scratch_.begin(), scratch_.end());
+      mesh_.line_physical.push_back(physical);
+    }
+  }
+
+  void elements41(const Section& s) {
+    Tokens t(s);
+    const int blocks = t.count("number of element blocks");
+    const int total = t.count("number of elements");
+    t.integer("minimum element tag");
+    t.integer("maximum element tag");
+    long long read = 0;
+    for (int b = 0; b < blocks; ++b) {
+      const long long dim = t.integer("entity dimension");
+      const long long entity = t.integer("entity tag");
+      const long long type = t.integer("element type");
+      const int n = t.count("number of elements in the block");
+      const auto physical = entity_physical_.find({dim, entity});
+      for (int i = 0; i < n; ++i, ++read) {
+        const long long tag = t.positive("element tag");
+        element(t, tag, type, physical == entity_physical_.end() ? 0 : physical->second);
+      }
+    }
+    if (read != total)
+      t.fail("the header announces " + std::to_string(total) + " elements, the blocks hold " +
+             std::to_string(read));
+    t.expect_end();
+  }
+
+  void elements22(const Section& s) {
+    Tokens t(s);
+    const int n = t.count("number of elements");
+    for (int i = 0; i < n; ++i) {
+      const long long tag = t.positive("element tag");
+      const long long type = t.integer("element type");
+      const int tags = t.count("number of tags");
+      long long physical = 0;
+      for (int k = 0; k < tags; ++k) {
+        const long long v = t.integer("element tag list");
+        if (k == 0) physical = v;
+      }
+      if (physical > INT_MAX) t.fail("physical tag " + std::to_string(physical) + " is out of range");
+      element(t, tag, type, static_cast<int>(physical));
+    }
+    t.expect_end();
+  }
+
+  void finish() {
+    const Section& elements = sections_.at("Elements");
+    if (triangle_order_ != 0 && line_order_ != 0 && triangle_order_ != line_order_)
+      fail(elements.first_line, "Elements",
+           "lines of order " + std::to_string(line_order_) + " with triangles of order " +
+               std::to_string(triangle_order_));
+    mesh_.order = triangle_order_ != 0 ? triangle_order_ : line_order_ != 0 ? line_order_ : 1;
+    if (auto error = mesh_.structure_error()) throw MshError("the mesh read is inconsistent: " + *error);
+  }
+
+  std::map<std::string, Section> sections_;
+  int version_ = 0;
+  std::map<std::pair<long long, long long>, int> entity_physical_;  // (dim, entity tag) -> physical tag
+  std::unordered_map<long long, int> node_index_;                   // node tag -> index; lookups only
+  std::vector<int> scratch_;
+  int triangle_order_ = 0, line_order_ = 0;
+  HighOrderMesh mesh_;
+};
+
+}  // namespace
+
+HighOrderMesh parse_msh(std::string_view text) {
+  return Reader(text).read();
+}
+
+HighOrderMesh read_msh(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw MshError(path + ": cannot be read");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad()) throw MshError(path + ": cannot be read");
+  try {
+    return parse_msh(buffer.str());
+  } catch (const MshError& e) {
+    throw MshError(path + ": " + e.what());
+  }
+}
+
+}  // namespace curvemesh::io

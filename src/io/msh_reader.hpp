@@ -1,0 +1,28 @@
+#pragma once
+// Gmsh .msh input: ASCII 4.1 and 2.2 files holding a planar triangle mesh of order 1, 2 or 3
+// (element types 2, 9, 21), with line elements (1, 8, 26) of the same order; point elements
+// (15) are skipped, other $-sections than $MeshFormat, $PhysicalNames, $Entities, $Nodes and
+// $Elements are ignored. Node tags may be any positive integers; nodes keep the order of the
+// file, elements too. An element takes the first physical tag of its entity (4.1) or its first
+// tag (2.2); 0 when it has none.
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "io/high_order_mesh.hpp"
+
+namespace curvemesh::io {
+
+// Anything the reader cannot take: the message names the line and section and says what is
+// wrong (binary file, parametric nodes, z ≠ 0, non-finite coordinates, mixed orders, unknown
+// element types, missing nodes, truncated or malformed sections).
+class MshError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+HighOrderMesh parse_msh(std::string_view text);
+// As parse_msh; the message starts with the path. Also throws MshError if the file cannot be read.
+HighOrderMesh read_msh(const std::string& path);
+
+}  // namespace curvemesh::io
