@@ -15,7 +15,8 @@ std::map<std::pair<int, int>, std::string> HighOrderMesh::default_physical_names
 void HighOrderMesh::add_triangle(std::span<const int> node_indices, int physical) {
   if (!order_ok() || static_cast<int>(node_indices.size()) != triangle_size())
     throw std::logic_error("HighOrderMesh: a triangle of order " + std::to_string(order) + " needs " +
-                           std::to_string(triangle_size()) + " nodes, got " + std::to_string(node_indices.size()));
+                           std::to_string(triangle_size()) + " nodes, got " +
+                           std::to_string(node_indices.size()));
   triangles.insert(triangles.end(), node_indices.begin(), node_indices.end());
   triangle_physical.push_back(physical);
 }
@@ -23,7 +24,8 @@ void HighOrderMesh::add_triangle(std::span<const int> node_indices, int physical
 void HighOrderMesh::add_line(std::span<const int> node_indices, int physical) {
   if (!order_ok() || static_cast<int>(node_indices.size()) != line_size())
     throw std::logic_error("HighOrderMesh: a line of order " + std::to_string(order) + " needs " +
-                           std::to_string(line_size()) + " nodes, got " + std::to_string(node_indices.size()));
+                           std::to_string(line_size()) + " nodes, got " +
+                           std::to_string(node_indices.size()));
   lines.insert(lines.end(), node_indices.begin(), node_indices.end());
   line_physical.push_back(physical);
 }
@@ -37,23 +39,25 @@ std::optional<std::string> HighOrderMesh::structure_error() const {
   const auto check = [n](const char* what, const std::vector<int>& indices, int size,
                          const std::vector<int>& physical) -> std::optional<std::string> {
     if (indices.size() % size != 0)
-      return std::string(what) + " array has " + std::to_string(indices.size()) + " entries, not a multiple of " +
-             std::to_string(size);
+      return std::string(what) + " array has " + std::to_string(indices.size()) +
+             " entries, not a multiple of " + std::to_string(size);
     if (physical.size() != indices.size() / size)
       return std::string(what) + "s: " + std::to_string(indices.size() / size) + " elements but " +
              std::to_string(physical.size()) + " physical tags";
     for (std::size_t i = 0; i < indices.size(); ++i)
       if (indices[i] < 0 || indices[i] >= n)
-        return std::string(what) + " " + std::to_string(i / size) + " refers to node " + std::to_string(indices[i]) +
-               " of " + std::to_string(n);
+        return std::string(what) + " " + std::to_string(i / size) + " refers to node " +
+               std::to_string(indices[i]) + " of " + std::to_string(n);
     for (std::size_t e = 0; e < physical.size(); ++e)
-      if (physical[e] < 0) return std::string(what) + " " + std::to_string(e) + " has a negative physical tag";
+      if (physical[e] < 0)
+        return std::string(what) + " " + std::to_string(e) + " has a negative physical tag";
     return std::nullopt;
   };
   if (auto e = check("triangle", triangles, triangle_size(), triangle_physical)) return e;
   if (auto e = check("line", lines, line_size(), line_physical)) return e;
   for (const auto& [key, name] : physical_names)
-    if (key.first != 1 && key.first != 2) return "physical name \"" + name + "\" has dimension " + std::to_string(key.first);
+    if (key.first != 1 && key.first != 2)
+      return "physical name \"" + name + "\" has dimension " + std::to_string(key.first);
   return std::nullopt;
 }
 
@@ -68,10 +72,17 @@ HighOrderMesh linear_mesh(const mesh::TriMesh& m) {
     if (m.alive(t)) out.add_triangle(m.triangle(t), kPhysicalDomain);
   for (const auto& [e, f] : m.sorted_features()) {
     switch (f.kind) {
-      case mesh::EdgeKind::primary: out.add_line(e, kPhysicalPrimary); break;
-      case mesh::EdgeKind::secondary: out.add_line(e, kPhysicalSecondary); break;
-      case mesh::EdgeKind::boundary: out.add_line(e, kPhysicalBoundary); break;
-      default: break;
+      case mesh::EdgeKind::primary:
+        out.add_line(e, kPhysicalPrimary);
+        break;
+      case mesh::EdgeKind::secondary:
+        out.add_line(e, kPhysicalSecondary);
+        break;
+      case mesh::EdgeKind::boundary:
+        out.add_line(e, kPhysicalBoundary);
+        break;
+      default:
+        break;
     }
   }
   return out;

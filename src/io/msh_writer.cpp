@@ -116,12 +116,14 @@ std::string msh_string(const HighOrderMesh& m, const MshOptions& options) {
   const auto nodes_of = [&m](const Group& g, int e) { return g.dim == 1 ? m.line(e) : m.triangle(e); };
 
   Text t;
-  t << (options.version == 22 ? "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n" : "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
+  t << (options.version == 22 ? "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
+                              : "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
   std::vector<std::string> names;
   for (const Group* g : element_groups) {
     const auto name = m.physical_names.find({g->dim, g->physical});
     if (g->physical > 0 && name != m.physical_names.end())
-      names.push_back(std::to_string(g->dim) + " " + std::to_string(g->physical) + " \"" + name->second + "\"\n");
+      names.push_back(std::to_string(g->dim) + " " + std::to_string(g->physical) + " \"" + name->second +
+                      "\"\n");
   }
   if (!names.empty()) {
     t << "$PhysicalNames\n" << names.size() << "\n";
@@ -132,7 +134,8 @@ std::string msh_string(const HighOrderMesh& m, const MshOptions& options) {
 
   if (options.version == 22) {
     t << "$Nodes\n" << n << "\n";
-    for (std::size_t v = 0; v < n; ++v) t << v + 1 << " " << m.nodes[v].x() << " " << m.nodes[v].y() << " 0\n";
+    for (std::size_t v = 0; v < n; ++v)
+      t << v + 1 << " " << m.nodes[v].x() << " " << m.nodes[v].y() << " 0\n";
     t << "$EndNodes\n$Elements\n" << elements << "\n";
     long id = 1;
     for (const Group* g : element_groups)
@@ -149,8 +152,10 @@ std::string msh_string(const HighOrderMesh& m, const MshOptions& options) {
   for (const std::vector<Group>* list : {&curves, &surfaces})
     for (const Group& g : *list) {
       t << g.entity << " " << g.box;
-      if (g.physical > 0) t << " 1 " << g.physical << " 0\n";
-      else t << " 0 0\n";
+      if (g.physical > 0)
+        t << " 1 " << g.physical << " 0\n";
+      else
+        t << " 0 0\n";
     }
   t << "$EndEntities\n";
   t << "$Nodes\n1 " << n << " 1 " << n << "\n2 1 0 " << n << "\n";
