@@ -5,11 +5,14 @@ Reads ASCII .msh 4.1 and 2.2 with its own parser and decides the orientation of 
 in exact rational arithmetic on the coordinates every reader of the file obtains: each decimal
 in the text parsed to the nearest double (as Gmsh, meshio and ParaView do), then taken exactly as
 a fraction, so no rounding in the test can hide an inverted or flat triangle. Triangles must be
-counter-clockwise. Line elements must lie on triangle edges. Then Gmsh (python3-gmsh) and meshio
-(python3-meshio) must both read the file and see the same triangles, and Gmsh's Jacobian and the
-inverse gradient error of its quality analysis must be positive. (Gmsh measures planar elements
-relative to their own normal, so a clockwise triangle looks valid to it: orientation is decided
-by the exact test alone.)
+counter-clockwise. For curved triangles (6 and 10 nodes) the Jacobian determinant of the element
+map must be proved positive on the whole closed element, exactly as well (Bernstein coefficients
+with subdivision, see check_curved), and neighbours must share their edge nodes. Line elements
+must be triangle edges, interior nodes included. Then Gmsh (python3-gmsh) and meshio
+(python3-meshio) must both read the file and see the same triangles, and Gmsh's Jacobian and its
+quality analysis (min J / max J over each element, inverse gradient error) must be positive.
+(Gmsh measures planar elements relative to their own normal, so a clockwise triangle looks valid
+to it: orientation is decided by the exact test alone.)
 
 Usage: msh_check.py FILE.msh [--json]. Exit 0 when valid, 1 when invalid or unreadable.
 """
@@ -167,6 +170,204 @@ def parse(text):
     return nodes, elements, names
 
 
+# ---------------------------------------------------------------------------------------------
+# Exact validity of curved (6- and 10-node) triangles.
+#
+# The element maps the reference triangle (ξ, η) ∈ {ξ, η ≥ 0, ξ + η ≤ 1} to the plane by Lagrange
+# interpolation of its n = 2 or 3 order nodes. Written in barycentric coordinates
+# λ = (λ0, λ1, λ2) = (1 − ξ − η, ξ, η) the same polynomial is a Bézier triangle
+#     x(λ) = Σ_{|α| = n} P_α B^n_α(λ),   B^n_α(λ) = n!/(α0! α1! α2!) λ0^α0 λ1^α1 λ2^α2,
+# whose control points P follow from the nodes by one fixed rational linear map (the nodes sit at
+# the domain points α/n, and the Lagrange and Bernstein bases span the same space). With
+# e0, e1, e2 the unit multi-indices, ∂x/∂ξ = ∂x/∂λ1 − ∂x/∂λ0 and the derivative of a Bézier
+# triangle along λa is n Σ_{|β| = n−1} P_{β+ea} B^{n−1}_β, so
+#     det J = (n Σ_β U_β B^{n−1}_β) × (n Σ_γ V_γ B^{n−1}_γ),  U_β = P_{β+e1} − P_{β+e0}, V_γ = P_{γ+e2} − P_{γ+e0},
+# and with B^m_β B^m_γ = C(β) C(γ) / C(β+γ) B^{2m}_{β+γ} (C the multinomial coefficient) det J is
+# a Bernstein polynomial of degree 2(n − 1) with coefficients
+#     D_δ = n² / C(δ) Σ_{β+γ=δ} C(β) C(γ) U_β × V_γ.
+# The Bernstein basis is nonnegative and sums to one, so all D_δ > 0 proves det J > 0 on the
+# closed triangle; the coefficients at the corners (δ = d e_a) are the values there, so a corner
+# coefficient ≤ 0 proves the element invalid. Otherwise the triangle is split at its edge midpoints
+# into four and each part re-expanded (de Casteljau / blossoming), which tightens the coefficients
+# to the values quadratically, and the test repeats to a depth limit.
+#
+# All of this is done in integers: the coordinates of an element are doubles, so multiplying them
+# by the largest power-of-two denominator among them makes them integers, and every rational
+# constant below is cleared by a common positive factor. Positive factors common to all
+# coefficients of a polynomial do not change its sign anywhere.
+
+CURVED_ORDER = {9: 2, 21: 3}  # element type -> polynomial order
+CERTIFY_DEPTH = 12  # subdivision levels; a part then spans 1/4096 of the reference edge
+
+
+def multi_indices(d):
+    """The barycentric multi-indices (α0, α1, α2) with α0 + α1 + α2 = d."""
+    return [(d - j - k, j, k) for j in range(d + 1) for k in range(d + 1 - j)]
+
+
+def multinomial(alpha):
+    return math.factorial(sum(alpha)) // math.prod(math.factorial(a) for a in alpha)
+
+
+def reference_nodes(order):
+    """Reference (ξ, η) of the Lagrange nodes in Gmsh's order: the corners (0,0), (1,0), (0,1);
+    then the interior nodes of edges 0→1, 1→2, 2→0, each starting from its first corner at steps
+    of 1/order; then, for order 3, the centre (1/3, 1/3)."""
+    corners = [(Fraction(0), Fraction(0)), (Fraction(1), Fraction(0)), (Fraction(0), Fraction(1))]
+    out = list(corners)
+    for a, b in ((0, 1), (1, 2), (2, 0)):
+        for s in range(1, order):
+            t = Fraction(s, order)
+            out.append(tuple((1 - t) * corners[a][i] + t * corners[b][i] for i in range(2)))
+    if order == 3:
+        out.append((Fraction(1, 3), Fraction(1, 3)))
+    return out
+
+
+def bernstein(alpha, lam):
+    return multinomial(alpha) * math.prod(l ** a for l, a in zip(lam, alpha))
+
+
+def invert(matrix):
+    """Exact inverse of a square matrix of Fractions (Gauss–Jordan)."""
+    n = len(matrix)
+    a = [list(row) + [Fraction(int(i == j)) for j in range(n)] for i, row in enumerate(matrix)]
+    for c in range(n):
+        pivot = next(r for r in range(c, n) if a[r][c] != 0)
+        a[c], a[pivot] = a[pivot], a[c]
+        a[c] = [v / a[c][c] for v in a[c]]
+        for r in range(n):
+            if r != c and a[r][c] != 0:
+                f = a[r][c]
+                a[r] = [v - f * w for v, w in zip(a[r], a[c])]
+    return [row[n:] for row in a]
+
+
+_maps = {}
+
+
+def bezier_map(order):
+    """(multi-indices, integer matrix T, positive scale s) with control point P_α = Σ_r T[α][r] x_r / s
+    for the nodes x_r in Gmsh's order: the inverse of the matrix B^order_α(node r)."""
+    if order not in _maps:
+        alphas = multi_indices(order)
+        nodes = reference_nodes(order)
+        lam = [(1 - xi - eta, xi, eta) for xi, eta in nodes]
+        inv = invert([[bernstein(alpha, l) for alpha in alphas] for l in lam])
+        scale = math.lcm(*(v.denominator for row in inv for v in row))
+        _maps[order] = (alphas, [[int(v * scale) for v in row] for row in inv], scale)
+    return _maps[order]
+
+
+def jacobian_bernstein(order, points):
+    """Bernstein coefficients {δ: integer} of det J of the element with nodes `points` (Fractions, in
+    Gmsh's order), each a common positive multiple of the true coefficient; and that multiple."""
+    alphas, T, s = bezier_map(order)
+    den = max(c.denominator for p in points for c in p)  # powers of two: the largest is their lcm
+    ints = [(int(x * den), int(y * den)) for x, y in points]
+    P = {alpha: (sum(t * x for t, (x, _) in zip(row, ints)), sum(t * y for t, (_, y) in zip(row, ints)))
+         for alpha, row in zip(alphas, T)}  # s·den·(control point)
+    m = order - 1
+    e = ((1, 0, 0), (0, 1, 0), (0, 0, 1))
+
+    def plus(a, b):
+        return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+    U = {b: (P[plus(b, e[1])][0] - P[plus(b, e[0])][0], P[plus(b, e[1])][1] - P[plus(b, e[0])][1]) for b in multi_indices(m)}
+    V = {b: (P[plus(b, e[2])][0] - P[plus(b, e[0])][0], P[plus(b, e[2])][1] - P[plus(b, e[0])][1]) for b in multi_indices(m)}
+    deltas = multi_indices(2 * m)
+    common = math.lcm(*(multinomial(d) for d in deltas))
+    sums = dict.fromkeys(deltas, 0)
+    for b, u in U.items():
+        for g, v in V.items():
+            sums[plus(b, g)] += multinomial(b) * multinomial(g) * (u[0] * v[1] - u[1] * v[0])
+    # True D_δ = order² sums_δ / (C(δ) (s·den)²); scaled here by common·(s·den)²/order².
+    return {d: sums[d] * (common // multinomial(d)) for d in deltas}, Fraction(common * (s * den) ** 2, order ** 2)
+
+
+def subdivide(coeffs, degree, triangle):
+    """Coefficients of the same polynomial on the sub-triangle with the given vertices (integer
+    barycentric triples, each summing to 2), all scaled by 2^degree: the blossom
+    f(v0^i, v1^j, v2^k) by de Casteljau steps with v0, then v1, then v2."""
+    def step(c, d, v):  # degree d -> d − 1, evaluating one argument of the blossom at v
+        return {a: v[0] * c[(a[0] + 1, a[1], a[2])] + v[1] * c[(a[0], a[1] + 1, a[2])] + v[2] * c[(a[0], a[1], a[2] + 1)]
+                for a in multi_indices(d - 1)}
+
+    out = {}
+    after_i = coeffs
+    for i in range(degree + 1):
+        if i:
+            after_i = step(after_i, degree - i + 1, triangle[0])
+        after_j = after_i
+        for j in range(degree - i + 1):
+            if j:
+                after_j = step(after_j, degree - i - j + 1, triangle[1])
+            c, d = after_j, degree - i - j
+            while d:
+                c, d = step(c, d, triangle[2]), d - 1
+            out[(i, j, degree - i - j)] = c[(0, 0, 0)]
+    return out
+
+
+# The four halves-of-edges sub-triangles, vertices as barycentric triples times 2.
+_CHILDREN = (((2, 0, 0), (1, 1, 0), (1, 0, 1)), ((1, 1, 0), (0, 2, 0), (0, 1, 1)),
+             ((1, 0, 1), (0, 1, 1), (0, 0, 2)), ((0, 1, 1), (1, 0, 1), (1, 1, 0)))
+
+
+def certify_positive(coeffs, degree, depth=CERTIFY_DEPTH):
+    """'positive' when the Bernstein polynomial is proved > 0 on the closed triangle, 'not positive'
+    when a value ≤ 0 is found at a (sub-)triangle corner, 'undecided' at the depth limit; and the
+    number of subdivisions done. Depth first, stopping at the first decisive finding."""
+    corners = ((degree, 0, 0), (0, degree, 0), (0, 0, degree))
+    stack, splits = [(coeffs, 0)], 0
+    while stack:
+        c, level = stack.pop()
+        if any(c[k] <= 0 for k in corners):
+            return "not positive", splits
+        if all(v > 0 for v in c.values()):
+            continue
+        if level == depth:
+            return "undecided", splits
+        splits += 1
+        stack.extend((subdivide(c, degree, t), level + 1) for t in _CHILDREN)
+    return "positive", splits
+
+
+# Float statistics: det J sampled on the lattice of barycentric points with denominator 8.
+_SAMPLES = [tuple(Fraction(a, 8) for a in alpha) for alpha in multi_indices(8)]
+_sample_basis = {}
+
+
+def sampled_minimum(coeffs, degree):
+    """Minimum over the sample lattice of the polynomial with float coefficients {δ: value}."""
+    if degree not in _sample_basis:
+        _sample_basis[degree] = [[(d, float(bernstein(d, lam))) for d in multi_indices(degree)] for lam in _SAMPLES]
+    return min(sum(coeffs[d] * b for d, b in row) for row in _sample_basis[degree])
+
+
+def check_curved(etype, points):
+    """(verdict, subdivisions, scaled Jacobian estimate) of one 6- or 10-node triangle: the verdict
+    of certify_positive, and min det J / det J of the straight triangle through the corners (None
+    when that triangle is not counter-clockwise)."""
+    order = CURVED_ORDER[etype]
+    coeffs, factor = jacobian_bernstein(order, points)
+    verdict, splits = certify_positive(coeffs, 2 * (order - 1))
+    (ax, ay), (bx, by), (cx, cy) = points[:3]
+    straight = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax)  # det J of the straight triangle
+    scaled = None
+    if straight > 0:
+        unit = factor * straight  # coefficients are det J times `factor`
+        scaled = sampled_minimum({d: float(Fraction(v) / unit) for d, v in coeffs.items()}, 2 * (order - 1))
+    return verdict, splits, scaled
+
+
+def oriented_edge(a, b, interior):
+    """(key, interior node tags) of an edge between corner tags a and b whose interior nodes are
+    listed from a to b, both read from the lower corner tag."""
+    interior = list(interior)
+    return ((a, b), interior) if a < b else ((b, a), interior[::-1])
+
+
 def amips(a, b, c):
     e1 = (b[0] - a[0], b[1] - a[1])
     e2 = (c[0] - a[0], c[1] - a[1])
@@ -215,20 +416,32 @@ def check_with_readers(path, triangles, report):
                 report["gmsh_min_jacobian"] = float(min(dets))
                 if min(dets) <= 0:
                     report["problems"].append(f"Gmsh finds a non-positive Jacobian ({min(dets):g})")
-            # Gmsh's mesh quality analysis: the inverse gradient error measure is positive for
-            # valid elements.
+            # Gmsh's mesh quality analysis, over the whole of each element (by its own Bézier
+            # bounds): with JacobianDeterminant, Gmsh 4.8 makes a view "minJ/maxJ 2D" whose one
+            # column per element holds min det J / max det J (maxJ / minJ when det J < 0 throughout,
+            # and 0 when max det J = 0), so a value ≤ 0 means det J vanishes or changes sign on the
+            # element; with IGEMeasure a view "IGE 2D" holding the inverse gradient error measure,
+            # positive for valid elements.
+            gmsh.plugin.setNumber("AnalyseMeshQuality", "JacobianDeterminant", 1)
             gmsh.plugin.setNumber("AnalyseMeshQuality", "IGEMeasure", 1)
-            gmsh.plugin.setNumber("AnalyseMeshQuality", "JacobianDeterminant", 0)
             gmsh.plugin.setNumber("AnalyseMeshQuality", "CreateView", 1)
             gmsh.plugin.setNumber("AnalyseMeshQuality", "DimensionOfElements", 2)
             gmsh.plugin.run("AnalyseMeshQuality")
             for view in gmsh.view.getTags():
+                name = gmsh.option.getString(f"View[{gmsh.view.getIndex(view)}].Name")
                 _, _, data, _, _ = gmsh.view.getModelData(view, 0)
-                if data:
-                    ige = min(d[0] for d in data)
-                    report["gmsh_min_ige"] = float(ige)
-                    if ige <= 0:
-                        report["problems"].append(f"Gmsh's quality analysis finds a non-positive element ({ige:g})")
+                if not data:
+                    continue
+                lowest = float(min(d[0] for d in data))
+                if name.startswith("minJ/maxJ"):
+                    report["gmsh_min_jacobian_ratio"] = lowest
+                    if lowest <= 0:
+                        report["problems"].append(f"Gmsh's quality analysis finds det J ≤ 0 in an element "
+                                                  f"(min J / max J = {lowest:g})")
+                elif name.startswith("IGE"):
+                    report["gmsh_min_ige"] = lowest
+                    if lowest <= 0:
+                        report["problems"].append(f"Gmsh's quality analysis finds a non-positive element (IGE {lowest:g})")
         finally:
             gmsh.finalize()
     except Exception as e:
@@ -246,6 +459,7 @@ def check(path, readers=True):
         report["valid"] = False
         return report
     tris = [en[:3] for etype, en, _ in elements if etype in TRIANGLES]
+    curved = [(etype, en) for etype, en, _ in elements if etype in CURVED_ORDER]
     inverted = degenerate = 0
     seen, duplicates, edges = set(), 0, set()
     min_a, max_e, sum_e = math.pi, 0.0, 0.0
@@ -265,13 +479,36 @@ def check(path, readers=True):
         e = amips(fa, fb, fc)
         max_e, sum_e = max(max_e, e), sum_e + e
         min_a = min(min_a, min_angle(fa, fb, fc))
+    # Every edge with its interior nodes read from its lower corner tag: triangles that share an
+    # edge must share these nodes too, or the mesh is not conforming (a crack, or an overlap, even
+    # when duplicated nodes sit at the same positions).
+    edge_nodes, unshared = {}, 0
+    for etype, en, _ in elements:
+        if etype in TRIANGLES:
+            inner = CURVED_ORDER.get(etype, 1) - 1  # interior nodes per edge
+            for k, (i, j) in enumerate(((0, 1), (1, 2), (2, 0))):
+                key, interior = oriented_edge(en[i], en[j], en[3 + k * inner:3 + (k + 1) * inner])
+                if edge_nodes.setdefault(key, interior) != interior:
+                    unshared += 1
+    # Line elements must be triangle edges, interior nodes included.
     lines, not_on_edges = {}, 0
     for etype, en, phys in elements:
         if etype in LINES:
             name = names.get((1, phys), str(phys))
             lines[name] = lines.get(name, 0) + 1
-            if (min(en[0], en[1]), max(en[0], en[1])) not in edges:
+            key, interior = oriented_edge(en[0], en[1], en[2:])
+            if edge_nodes.get(key) != interior:
                 not_on_edges += 1
+    # Curved triangles: exact positivity of det J on the whole element.
+    not_positive = uncertified = subdivided = 0
+    min_scaled = math.inf
+    for etype, en in curved:
+        verdict, splits, scaled = check_curved(etype, [nodes[n] for n in en])
+        not_positive += verdict == "not positive"
+        uncertified += verdict == "undecided"
+        subdivided += splits > 0
+        if scaled is not None:
+            min_scaled = min(min_scaled, scaled)
     used = {n for _, en, _ in elements for n in en}
     total_length = sum(math.dist([float(c) for c in nodes[u]], [float(c) for c in nodes[v]]) for u, v in edges)
     report.update(
@@ -280,7 +517,10 @@ def check(path, readers=True):
         min_angle_deg=math.degrees(min_a) if tris else 0.0, max_amips=max_e,
         mean_amips=sum_e / len(tris) if tris else 0.0,
         mean_edge_length=total_length / len(edges) if edges else 0.0, lines=lines,
-        lines_not_on_edges=not_on_edges,
+        lines_not_on_edges=not_on_edges, edges_not_shared=unshared,
+        curved=len(curved), curved_invalid=not_positive + uncertified, curved_not_positive=not_positive,
+        curved_uncertified=uncertified, curved_subdivided=subdivided,
+        min_scaled_jacobian=min_scaled if min_scaled < math.inf else None,
         physical_surfaces=sorted(n for (d, _), n in names.items() if d == 2))
     if not tris:
         report["problems"].append("no triangles")
@@ -292,6 +532,13 @@ def check(path, readers=True):
         report["problems"].append(f"{duplicates} duplicate triangles")
     if not_on_edges:
         report["problems"].append(f"{not_on_edges} line elements are not triangle edges")
+    if unshared:
+        report["problems"].append(f"edge nodes not shared: {unshared} triangle edges use other nodes than their neighbour's")
+    if not_positive:
+        report["problems"].append(f"{not_positive} curved triangles have a Jacobian determinant ≤ 0 somewhere")
+    if uncertified:
+        report["problems"].append(f"{uncertified} curved triangles could not be certified (det J > 0 not proved "
+                                  f"after {CERTIFY_DEPTH} subdivisions)")
     if readers and tris:
         check_with_readers(path, len(tris), report)
     report["valid"] = not report["problems"]
