@@ -173,6 +173,18 @@ for order, kind in ((3, 21), (2, 9)):
            min_scaled_jacobian=lambda v: v is not None and 0 < v < 0.2)
     curved(f"{P} det J = 0 at a corner", cusp, kind, False, curved_not_positive=1, min_scaled_jacobian=0.0)
 
+# The decision itself on polynomials given by their Bernstein coefficients (degree 2):
+# (λ0 − 2λ1)² + λ2 (λ0 + λ1 + λ2), times 2, is ≥ 0 and vanishes only at λ = (2/3, 1/3, 0), which no
+# subdivision corner reaches: undecided at the depth limit (reported as invalid). Lifted by a
+# small constant it is positive, and provably so after a few subdivisions.
+touching = {(2, 0, 0): 2, (1, 1, 0): -4, (0, 2, 0): 8, (1, 0, 1): 1, (0, 1, 1): 1, (0, 0, 2): 2}
+verdict, _ = msh_check.certify_positive(touching, 2)
+check("double zero inside an edge: undecided", verdict == "undecided", verdict)
+verdict, splits = msh_check.certify_positive({k: 64 * v + 1 for k, v in touching.items()}, 2)
+check("the same lifted by 1/64: positive after subdivision", verdict == "positive" and splits > 0, (verdict, splits))
+verdict, _ = msh_check.certify_positive({k: 64 * v - 1 for k, v in touching.items()}, 2)
+check("the same lowered by 1/64: not positive", verdict == "not positive", verdict)
+
 
 def lagrange_mesh(corners, triangles, order, share=True):
     """Nodes and 1-based element node lists of triangles with straight edges of the given order,
