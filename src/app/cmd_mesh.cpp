@@ -1,5 +1,6 @@
-// `curvemesh mesh`: SVG (or Triangle .poly) in, linear mesh out — reading, feature processing
-// (§4), exact triangulation and quality optimization (§4.1), then .msh, SVG and statistics.
+// `curvemesh mesh`: SVG (or Triangle .poly) in, mesh out — reading, feature processing (§4),
+// exact triangulation and quality optimization (§4.1), curving (§4.2, unless --linear), then
+// .msh, VTU, SVG and statistics.
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <iostream>
@@ -8,8 +9,12 @@
 
 #include "app/commands.hpp"
 #include "app/feature_options.hpp"
+#include "curve/curve.hpp"
 #include "features/features.hpp"
 #include "features/poly_input.hpp"
+#include "io/curved_mesh.hpp"
+#include "io/high_order_mesh.hpp"
+#include "io/vtu_writer.hpp"
 #include "io/mesh_svg.hpp"
 #include "io/msh_writer.hpp"
 #include "io/output_file.hpp"
@@ -24,13 +29,14 @@ namespace curvemesh::app {
 namespace {
 
 struct MeshArgs {
-  std::string input, output_msh, output_svg, output_stats, stop_after = "optimize";
+  std::string input, output_msh, output_svg, output_vtu, output_stats, stop_after;
   bool linear = false, verbose = false;
   int msh_version = 41;
   svg::ReadOptions read;
   features::Options features;
   triangulate::Options triangulate;
   optimize::Options optimize;
+  curve::Options curve;
 };
 
 bool ends_with(const std::string& s, const std::string& suffix) {
@@ -43,8 +49,9 @@ nlohmann::ordered_json quality_json(const optimize::Quality& q) {
 }
 
 int run_mesh(MeshArgs args) {
-  if (!args.linear) {
-    std::cerr << "curvemesh: only linear meshes can be made so far; pass --linear\n";
+  if (args.stop_after.empty()) args.stop_after = args.linear ? "optimize" : "curve";
+  if (args.linear && args.stop_after == "curve") {
+    std::cerr << "curvemesh: --stop-after curve makes no sense with --linear\n";
     return kUsage;
   }
   if (!feature_options_valid(args.features)) return kUsage;
@@ -98,8 +105,8 @@ int run_mesh(MeshArgs args) {
                           {"exact_vertices", tri.stats.exact_vertices}};
   mesh::TriMesh& m = tri.mesh;
 
-  if (args.stop_after == "optimize") {
-    const mesh::Constraints constraints = triangulate::constraints_of(f, tri.box);
+  const mesh::Constraints constraints = triangulate::constraints_of(f, tri.box);
+  if (args.stop_after != "triangulate") {
     t = Clock::now();
     const optimize::Stats s = optimize::optimize(m, constraints, f.lengths.d, args.optimize);
     stats["seconds"]["optimize"] = seconds_since(t);
@@ -119,17 +126,48 @@ int run_mesh(MeshArgs args) {
               << "); no mesh written\n";
     return kInternal;
   }
-  try {
-    if (m.exact_vertex_count() > 0) {
-      // Writing rounded coordinates could write an inverted triangle: refuse instead.
-      std::cerr << "curvemesh: " << args.input << ": " << m.exact_vertex_count()
-                << " vertices still have exact coordinates that do not round to doubles without inverting a "
-                   "triangle; no mesh written\n";
+  if (m.exact_vertex_count() > 0) {
+    // Writing rounded coordinates could write an inverted triangle: refuse instead.
+    std::cerr << "curvemesh: " << args.input << ": " << m.exact_vertex_count()
+              << " vertices still have exact coordinates that do not round to doubles without inverting a "
+                 "triangle; no mesh written\n";
+    return kInternal;
+  }
+  std::optional<curve::CurvedMesh> curved;
+  if (args.stop_after == "curve") {
+    t = Clock::now();
+    curve::Stats s;
+    curved = curve::curve(std::move(m), constraints, args.curve, &s);
+    stats["seconds"]["curve"] = seconds_since(t);
+    stats["curve"] = {{"split_triangles", s.split_triangles},
+                      {"primary_edges", s.primary_edges},
+                      {"curved_edges", s.curved_edges},
+                      {"straight_primary_edges", s.straight_primary_edges},
+                      {"curved_triangles", s.curved_triangles},
+                      {"alternative_centres", s.alternative_centres},
+                      {"invalid_triangles", s.invalid_triangles},
+                      {"min_scaled_jacobian", s.min_scaled_jacobian},
+                      {"max_distance", s.max_distance},
+                      {"max_distance_rel", s.max_distance / f.lengths.d}};
+    stats["mesh"]["triangles"] = curved->triangles.size();
+    if (s.invalid_triangles > 0) {
+      std::cerr << "curvemesh: internal error: " << args.input << ": " << s.invalid_triangles
+                << " curved triangles could not be certified valid; no mesh written\n";
       return kInternal;
     }
+  }
+  try {
     t = Clock::now();
-    io::write_msh(m, args.output_msh, io::MshOptions{args.msh_version});
-    if (!args.output_svg.empty()) io::write_file_atomically(args.output_svg, io::mesh_svg(m));
+    if (curved) {
+      const io::HighOrderMesh out = io::curved_mesh(*curved);
+      io::write_msh(out, args.output_msh, io::MshOptions{args.msh_version});
+      if (!args.output_vtu.empty()) io::write_vtu(out, args.output_vtu);
+      if (!args.output_svg.empty()) io::write_file_atomically(args.output_svg, io::mesh_svg(*curved));
+    } else {
+      io::write_msh(m, args.output_msh, io::MshOptions{args.msh_version});
+      if (!args.output_vtu.empty()) io::write_vtu(io::linear_mesh(m), args.output_vtu);
+      if (!args.output_svg.empty()) io::write_file_atomically(args.output_svg, io::mesh_svg(m));
+    }
     stats["seconds"]["write"] = seconds_since(t);
     if (!args.output_stats.empty()) io::write_file_atomically(args.output_stats, stats.dump(1) + "\n");
   } catch (const io::OutputError& e) {
@@ -147,21 +185,25 @@ Runner add_mesh_command(CLI::App& app) {
       "mesh",
       "Mesh an SVG drawing (or a Triangle .poly file: points and segments, all secondary): feature "
       "processing (paper §4), an exact constrained triangulation of the bounding box and every feature, "
-      "then quality optimization (§4.1). Writes a Gmsh .msh file with triangles and the feature edges "
-      "as line elements in physical groups primary, secondary and boundary.");
+      "quality optimization (§4.1), and curving (§4.2): cubic 10-node triangles whose edges follow the "
+      "primary curves, each certified to have a positive Jacobian. Writes a Gmsh .msh file with the "
+      "triangles and the feature edges as line elements in physical groups primary, secondary and "
+      "boundary; with --linear, straight 3-node triangles.");
   cmd->add_option("input", args->input, "SVG or .poly file to mesh")->required();
   cmd->add_option("-o,--output", args->output_msh, "Gmsh .msh file to write")->required();
-  cmd->add_flag("--linear", args->linear, "make a linear mesh (straight-sided triangles)");
+  cmd->add_flag("--linear", args->linear, "make a linear mesh (straight-sided 3-node triangles) instead of a curved one");
   cmd->add_option("--msh-version", args->msh_version, "Gmsh file format: 41 (4.1) or 22 (2.2)")
       ->capture_default_str()
       ->transform(CLI::CheckedTransformer(std::map<std::string, int>{{"4.1", 41}, {"41", 41}, {"2.2", 22}, {"22", 22}}));
-  cmd->add_option("--svg", args->output_svg, "also draw the mesh into this SVG (primary red, secondary green)");
+  cmd->add_option("--svg", args->output_svg,
+                  "also draw the mesh into this SVG (primary red, secondary green; curved edges as cubic Béziers)");
+  cmd->add_option("--vtu", args->output_vtu, "also write the mesh as VTK XML (.vtu, Lagrange triangles; opens in ParaView)");
   cmd->add_option("--stats", args->output_stats,
                   "write statistics as JSON: counts, min angle, max and mean AMIPS, seconds per stage");
   cmd->add_option("--stop-after", args->stop_after,
-                  "last stage to run: triangulate (the exact triangulation, unoptimized) or optimize")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"triangulate", "optimize"}));
+                  "last stage to run: triangulate (the exact triangulation, unoptimized), optimize (the linear "
+                  "mesh) or curve (default; optimize with --linear)")
+      ->check(CLI::IsMember({"triangulate", "optimize", "curve"}));
   add_feature_options(*cmd, args->features);
   cmd->add_flag("-v,--verbose", args->verbose, "report each optimization pass on stderr (triangles, min angle, max AMIPS)");
   cmd->add_option("--max-iterations", args->optimize.max_iterations, "optimization passes at most")

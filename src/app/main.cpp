@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   auto add = [&](Runner r) { runners[app.get_subcommands({}).back()] = std::move(r); };
   add(add_features_command(app));
   add(add_mesh_command(app));
+  add(add_check_command(app));
 
   try {
     app.parse(argc, argv);

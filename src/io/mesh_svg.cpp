@@ -2,6 +2,8 @@
 
 #include "io/svg_writer.hpp"
 
+using curvemesh::geometry::Vec2;
+
 namespace curvemesh::io {
 
 std::string mesh_svg(const mesh::TriMesh& m) {
@@ -22,6 +24,39 @@ std::string mesh_svg(const mesh::TriMesh& m) {
   for (const auto& [e, f] : m.sorted_features()) {
     const char* colour = f.kind == mesh::EdgeKind::primary ? "#d00000" : f.kind == mesh::EdgeKind::secondary ? "#00a000" : "#000000";
     svg.segment(m.point(e[0]), m.point(e[1]), colour);
+  }
+  for (int v = 0; v < m.vertex_count(); ++v)
+    if (m.tag(v).isolated) svg.dot(m.point(v), "#0000d0");
+  return svg.finish();
+}
+
+namespace {
+
+// The cubic Bézier through four points at parameters 0, 1/3, 2/3, 1 (a P3 edge).
+geometry::CubicBezier bezier_through(const Vec2& p0, const Vec2& p1, const Vec2& p2, const Vec2& p3) {
+  return {p0, (-5 * p0 + 18 * p1 - 9 * p2 + 2 * p3) / 6, (2 * p0 - 9 * p1 + 18 * p2 - 5 * p3) / 6, p3};
+}
+
+}  // namespace
+
+std::string mesh_svg(const curve::CurvedMesh& cm) {
+  const mesh::TriMesh& m = cm.linear;
+  geometry::Box2 box;
+  for (const Vec2& p : cm.nodes) box.add(p);
+  SvgWriter svg(box);
+  for (std::size_t k = 0; k < cm.triangles.size(); ++k) {
+    const auto& n = cm.triangles[k];
+    for (int i = 0; i < 3; ++i) {
+      const int a = n[i], b = n[(i + 1) % 3];
+      if (m.feature(a, b)) continue;
+      if (a < b || m.edge_triangles(a, b).size() == 1)
+        svg.cubic(bezier_through(cm.nodes[a], cm.nodes[n[3 + 2 * i]], cm.nodes[n[4 + 2 * i]], cm.nodes[b]), "#b0b0b0");
+    }
+  }
+  for (const curve::FeatureLine& line : cm.lines) {
+    const char* colour = line.kind == mesh::EdgeKind::primary ? "#d00000" : line.kind == mesh::EdgeKind::secondary ? "#00a000" : "#000000";
+    const auto& n = line.nodes;
+    svg.cubic(bezier_through(cm.nodes[n[0]], cm.nodes[n[2]], cm.nodes[n[3]], cm.nodes[n[1]]), colour);
   }
   for (int v = 0; v < m.vertex_count(); ++v)
     if (m.tag(v).isolated) svg.dot(m.point(v), "#0000d0");

@@ -4,10 +4,13 @@
 // points as dots.
 #include <string>
 
+#include "curve/curve.hpp"
 #include "mesh/tri_mesh.hpp"
 
 namespace curvemesh::io {
 
 std::string mesh_svg(const mesh::TriMesh& mesh);
+// The same for a curved mesh: each edge as the SVG cubic Bézier through its four nodes.
+std::string mesh_svg(const curve::CurvedMesh& mesh);
 
 }  // namespace curvemesh::io

@@ -1,0 +1,62 @@
+#pragma once
+// §4.2: from the optimized linear mesh to cubic (10-node) triangles whose primary edges follow
+// their curves.
+//
+//  1. Triangles with more than one primary edge are split (at the middle of a non-primary edge,
+//     or at the mid-parameter of a primary one) until each has at most one.
+//  2. Every primary edge whose two vertices lie on the curve gets the cubic Lagrange nodes at 1/3
+//     and 2/3 of its parameter interval (App. C); all other edges are straight (nodes at thirds).
+//     The centre node is the paper's (the average of the nine others) or, where that map is not
+//     certified, the one of a few alternatives that is.
+//  3. Validity: the Jacobian determinant of every curved triangle is certified positive on the
+//     whole triangle (Bernstein coefficients, subdivision; geometry/p3_triangle). A primary edge
+//     stays straight when either of its triangles cannot be certified with it curved; the
+//     distance from such an edge to its curve is recorded.
+// High-order nodes are shared: one per edge position, one centre per triangle.
+#include <array>
+#include <vector>
+
+#include "geometry/vec2.hpp"
+#include "mesh/constraints.hpp"
+#include "mesh/tri_mesh.hpp"
+
+namespace curvemesh::curve {
+
+using geometry::Vec2;
+
+struct Options {
+  int certificate_depth = 10;  // subdivision levels of the Jacobian certificate
+};
+
+struct Stats {
+  int split_triangles = 0;      // splits made so that every triangle has at most one primary edge
+  int primary_edges = 0;        // primary edges of the final mesh
+  int curved_edges = 0;         // of those, followed by the cubic map exactly (nodes on the curve)
+  int straight_primary_edges = 0;  // left straight: not certifiable curved yet, or off the curve
+  int curved_triangles = 0;     // triangles with a curved edge
+  int alternative_centres = 0;  // curved triangles certified with another centre than the paper's
+  double min_scaled_jacobian = 1;  // over curved triangles (geometry::JacobianCertificate)
+  int invalid_triangles = 0;    // triangles whose map is not certified (0 in a mesh that is written)
+  double max_distance = 0;      // largest distance from a straight primary edge to its curve
+  double seconds = 0;
+};
+
+// A feature edge of the curved mesh: its four nodes (ends first, then the inner two in order).
+struct FeatureLine {
+  std::array<int, 4> nodes;
+  mesh::EdgeKind kind;
+};
+
+struct CurvedMesh {
+  mesh::TriMesh linear;             // the corners, tags and features after step 1
+  std::vector<Vec2> nodes;          // vertices first (same indices as `linear`), then the rest
+  std::vector<std::array<int, 10>> triangles;  // Gmsh's 10-node order, counter-clockwise corners
+  std::vector<FeatureLine> lines;   // every tagged edge, deterministic order
+};
+
+// `diagonal` is the input's bounding-box diagonal d. The linear mesh must be valid (the output of
+// optimize). Never fails: the worst outcome is a straight mesh.
+CurvedMesh curve(mesh::TriMesh linear, const mesh::Constraints& constraints, const Options& options = {},
+                 Stats* stats = nullptr);
+
+}  // namespace curvemesh::curve

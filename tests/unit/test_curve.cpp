@@ -1,0 +1,167 @@
+// Curving (§4.2): checked from outside the stage — every element certified with exact rationals,
+// nodes compared with the curves, sharing counted — on whole drawings and on a hand-made element
+// that cannot be curved.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+
+#include "curve/curve.hpp"
+#include "features/features.hpp"
+#include "geometry/p3_triangle.hpp"
+#include "optimize/optimize.hpp"
+#include "svg/reader.hpp"
+#include "triangulate/constraints.hpp"
+#include "triangulate/triangulate.hpp"
+
+namespace curvemesh {
+namespace {
+
+using geometry::Vec2;
+using mesh::EdgeKind;
+
+struct Pipeline {
+  mesh::Constraints constraints;
+  curve::CurvedMesh curved;
+  curve::Stats stats;
+};
+
+Pipeline run(const std::string& file) {
+  const auto f = features::process(svg::read_svg_file(file));
+  auto tri = triangulate::triangulate(f);
+  Pipeline p;
+  p.constraints = triangulate::constraints_of(f, tri.box);
+  optimize::optimize(tri.mesh, p.constraints, f.lengths.d);
+  p.curved = curve::curve(std::move(tri.mesh), p.constraints, {}, &p.stats);
+  return p;
+}
+
+geometry::P3Nodes nodes_of(const curve::CurvedMesh& c, std::size_t t) {
+  geometry::P3Nodes p;
+  for (int i = 0; i < 10; ++i) p[i] = c.nodes[c.triangles[t][i]];
+  return p;
+}
+
+class CurveOnExamples : public testing::TestWithParam<std::string> {};
+
+TEST_P(CurveOnExamples, CertifiedSharedAndOnTheCurves) {
+  const Pipeline p = run(std::string(CURVEMESH_EXAMPLES) + "/" + GetParam());
+  const curve::CurvedMesh& c = p.curved;
+  ASSERT_GT(c.triangles.size(), 0u);
+  // Every element valid, decided exactly on the doubles as stored.
+  for (std::size_t t = 0; t < c.triangles.size(); ++t)
+    ASSERT_EQ(geometry::certify_jacobian_exact(nodes_of(c, t)), geometry::JacobianVerdict::positive) << "triangle " << t;
+  // At most one primary edge per triangle; each edge's inner nodes shared by its triangles.
+  std::map<std::pair<int, int>, std::pair<int, int>> inner;  // (a, b) with a < b -> nodes from a
+  for (const auto& n : c.triangles) {
+    int primary = 0;
+    for (int i = 0; i < 3; ++i) {
+      const int a = n[i], b = n[(i + 1) % 3];
+      const auto* f = c.linear.feature(a, b);
+      primary += f && f->kind == EdgeKind::primary;
+      const auto key = std::minmax(a, b);
+      const auto nodes = a < b ? std::pair{n[3 + 2 * i], n[4 + 2 * i]} : std::pair{n[4 + 2 * i], n[3 + 2 * i]};
+      const auto [it, fresh] = inner.emplace(key, nodes);
+      if (!fresh) {
+        EXPECT_EQ(it->second, nodes) << "edge " << a << "-" << b << " has unshared nodes";
+      }
+    }
+    EXPECT_LE(primary, 1);
+  }
+  EXPECT_EQ(c.nodes.size(), static_cast<std::size_t>(c.linear.vertex_count()) + 2 * inner.size() + c.triangles.size());
+  // Curved primary edges: their inner nodes are the curve at 1/3 and 2/3 of the parameter interval.
+  int curved = 0;
+  for (const auto& [edge, f] : c.linear.sorted_features()) {
+    if (f.kind != EdgeKind::primary) continue;
+    const auto [first, second] = inner.at({edge[0], edge[1]});
+    const Vec2 on_curve = p.constraints.sections[f.source].eval((2 * f.t_lo + f.t_hi) / 3);
+    if ((c.nodes[first] - on_curve).norm() == 0) {
+      ++curved;
+      EXPECT_EQ(c.nodes[second], p.constraints.sections[f.source].eval((f.t_lo + 2 * f.t_hi) / 3));
+    }
+  }
+  EXPECT_EQ(curved, p.stats.curved_edges);
+  EXPECT_EQ(p.stats.curved_edges + p.stats.straight_primary_edges, p.stats.primary_edges);
+  EXPECT_GT(p.stats.curved_edges, 0);
+  EXPECT_EQ(p.stats.invalid_triangles, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Examples, CurveOnExamples,
+                         testing::Values("open-curves.svg", "overlapping-shapes.svg", "transforms-and-use.svg"));
+
+TEST(Curve, AnEdgeThatWouldFoldItsTriangleStaysStraight) {
+  // Triangle a-b-c above a primary edge a-b whose curve bulges 0.3 upwards, past c at height 0.1:
+  // curved, the element folds. The edge must stay straight, with its distance recorded.
+  mesh::TriMesh m;
+  mesh::VertexTag fixed;
+  fixed.kind = mesh::VertexKind::fixed;
+  const int a = m.add_vertex({0, 0}, fixed), b = m.add_vertex({1, 0}, fixed);
+  const int c = m.add_vertex({0.5, 0.1}, fixed), d = m.add_vertex({0.5, -1}, fixed);
+  m.add_triangle(a, b, c);
+  m.add_triangle(a, d, b);
+  mesh::Constraints constraints;
+  mesh::SectionCurve curve;
+  curve.piece = geometry::CubicBezier({0, 0}, {0.3, 0.4}, {0.7, 0.4}, {1, 0});
+  constraints.sections.push_back(curve);
+  m.set_feature(a, b, {EdgeKind::primary, 0, 0, 0.0, 1.0});
+  curve::Stats s;
+  const curve::CurvedMesh out = curve::curve(m, constraints, {}, &s);
+  EXPECT_EQ(s.primary_edges, 1);
+  EXPECT_EQ(s.curved_edges, 0);
+  EXPECT_EQ(s.straight_primary_edges, 1);
+  EXPECT_NEAR(s.max_distance, 0.3, 1e-12);  // the bulge at the middle
+  for (std::size_t t = 0; t < out.triangles.size(); ++t)
+    EXPECT_EQ(geometry::certify_jacobian_exact(nodes_of(out, t)), geometry::JacobianVerdict::positive);
+
+  // With a gentle bulge (0.03) the same edge is curved.
+  constraints.sections[0].piece = geometry::CubicBezier({0, 0}, {0.3, 0.04}, {0.7, 0.04}, {1, 0});
+  curve::curve(m, constraints, {}, &s);
+  EXPECT_EQ(s.curved_edges, 1);
+  EXPECT_LE(s.max_distance, 1e-15);  // the cubic edge is the cubic curve
+}
+
+TEST(Curve, TrianglesWithSeveralPrimaryEdgesAreSplit) {
+  // One triangle whose three edges are primary (a small closed polygon meshed as one triangle)
+  // inside a box: after curving, every triangle has at most one primary edge.
+  mesh::TriMesh m;
+  mesh::VertexTag fixed;
+  fixed.kind = mesh::VertexKind::fixed;
+  const int a = m.add_vertex({0, 0}, fixed), b = m.add_vertex({1, 0}, fixed), c = m.add_vertex({0, 1}, fixed);
+  const int e = m.add_vertex({2, 2}, fixed), f = m.add_vertex({-2, 2}, fixed), g = m.add_vertex({-2, -2}, fixed),
+            h = m.add_vertex({2, -2}, fixed);
+  m.add_triangle(a, b, c);
+  m.add_triangle(b, e, c);
+  m.add_triangle(c, e, f);
+  m.add_triangle(c, f, a);
+  m.add_triangle(a, f, g);
+  m.add_triangle(a, g, h);
+  m.add_triangle(a, h, b);
+  m.add_triangle(b, h, e);
+  mesh::Constraints constraints;
+  for (const auto& [p, q] : {std::pair{Vec2(0, 0), Vec2(1, 0)}, {Vec2(1, 0), Vec2(0, 1)}, {Vec2(0, 1), Vec2(0, 0)}}) {
+    mesh::SectionCurve s;
+    s.piece = geometry::CubicBezier::line(p, q);
+    constraints.sections.push_back(s);
+  }
+  constraints.envelope = geometry::SegmentEnvelope({}, 0.01);
+  m.set_feature(a, b, {EdgeKind::primary, 0, 0, 0.0, 1.0});
+  m.set_feature(b, c, {EdgeKind::primary, 1, 1, 0.0, 1.0});
+  m.set_feature(a, c, {EdgeKind::primary, 2, 2, 1.0, 0.0});
+  curve::Stats s;
+  const curve::CurvedMesh out = curve::curve(m, constraints, {}, &s);
+  EXPECT_GT(s.split_triangles, 0);
+  for (const auto& n : out.triangles) {
+    int primary = 0;
+    for (int i = 0; i < 3; ++i) {
+      const auto* feature = out.linear.feature(n[i], n[(i + 1) % 3]);
+      primary += feature && feature->kind == EdgeKind::primary;
+    }
+    EXPECT_LE(primary, 1);
+  }
+  for (std::size_t t = 0; t < out.triangles.size(); ++t)
+    EXPECT_EQ(geometry::certify_jacobian_exact(nodes_of(out, t)), geometry::JacobianVerdict::positive);
+  EXPECT_EQ(s.primary_edges, s.curved_edges);
+}
+
+}  // namespace
+}  // namespace curvemesh
