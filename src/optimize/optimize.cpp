@@ -157,7 +157,10 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
       for (const Edge& e : edges) {
         const int v = mesh::split_edge(m, c, e.a, e.b, o.stop_max_amips);
         if (v < 0) continue;
-        size.push_back(edge_target(e.a, e.b));
+        // The sizing field at the middle: graded from the nearer end, up to the target. (The
+        // average of the ends would keep the middle of a long edge between two small sizes small,
+        // and refine a whole empty region to the size of the features around it.)
+        size.push_back(std::min(target, std::min(size[e.a], size[e.b]) + 0.5 * o.gradation * e.length));
         ++s.splits, ++changes;
       }
     }
