@@ -55,7 +55,11 @@ double min_angle(const Vec2& a, const Vec2& b, const Vec2& c) {
   const auto angle = [](const Vec2& u, const Vec2& v) { return std::atan2(std::abs(cross(u, v)), u.dot(v)); };
   const Vec2 ab = b - a, bc = c - b, ca = a - c;
   if (cross(ab, -ca) == 0) return 0.0;
-  return std::min({angle(ab, -ca), angle(bc, -ab), angle(ca, -bc)});
+  // The smallest angle is the one opposite the shortest side.
+  const double lab = ab.squaredNorm(), lbc = bc.squaredNorm(), lca = ca.squaredNorm();
+  if (lbc <= lab && lbc <= lca) return angle(ab, -ca);  // at a
+  if (lca <= lab) return angle(bc, -ab);                // at b
+  return angle(ca, -bc);                                // at c
 }
 
 CurveDerivatives along_curve(const AmipsDerivatives& s, const Vec2& dc, const Vec2& ddc) {

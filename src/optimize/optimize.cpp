@@ -50,8 +50,9 @@ std::vector<Edge> all_edges(const TriMesh& m) {
 // split and collapse passes undo each other forever.
 template <class Target>
 bool collapse_keeps_edges_short(const TriMesh& m, int from, int to, const Target& target) {
-  for (int w : m.neighbours(from))
-    if (w != to && (m.point(w) - m.point(to)).norm() > 4.0 / 3.0 * target(to, w)) return false;
+  for (int t : m.triangles_of(from))  // a neighbour seen twice is checked twice: no harm, no sorting
+    for (int w : m.triangle(t))
+      if (w != from && w != to && (m.point(w) - m.point(to)).norm() > 4.0 / 3.0 * target(to, w)) return false;
   return true;
 }
 
@@ -144,8 +145,8 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
   std::vector<double> size = initial_sizes(m, target, o.pinned_size_factor, o.gradation);  // the sizing field, per vertex
   const auto edge_target = [&](int a, int b) { return 0.5 * (size[a] + size[b]); };
   double best_max = s.initial.max_amips;
-  int stalled = 0, fruitless_refinements = 0, since_fewest = 0;
-  long fewest_changes = std::numeric_limits<long>::max();
+  int stalled = 0, fruitless_refinements = 0;
+  long previous_changes = std::numeric_limits<long>::max();
 
   for (; s.iterations < o.max_iterations; ++s.iterations) {
     long changes = 0;  // splits and collapses: the sizing work done in this iteration  // splits and collapses: the sizing work left
@@ -193,6 +194,29 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
         ++s.smooths;
       }
     }
+    // The vertices of the triangles that are still bad get more smoothing rounds of their own: one
+    // Newton step per pass lowers a sliver's energy by a constant factor only, and a sliver that
+    // starts at AMIPS 1e4 would otherwise cost a dozen passes over the whole mesh.
+    {
+      std::vector<int> bad;
+      for (int t = 0; t < m.triangle_slots(); ++t) {
+        if (!m.alive(t)) continue;
+        const auto& tri = m.triangle(t);
+        if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) > o.stop_max_amips)
+          bad.insert(bad.end(), tri.begin(), tri.end());
+      }
+      std::sort(bad.begin(), bad.end());
+      bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
+      std::erase_if(bad, [&](int v) {
+        return m.has_exact(v) || (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve);
+      });
+      for (int round = 0; round < o.extra_smoothing_rounds; ++round) {
+        int moved = 0;
+        for (int v : bad) moved += mesh::smooth_vertex(m, c, v);
+        s.smooths += moved;
+        if (moved == 0) break;
+      }
+    }
     // Secondary chords beside a path of feature edges, in triangles that stay bad: released.
     for (int t = 0; t < m.triangle_slots(); ++t) {
       if (!m.alive(t)) continue;
@@ -213,15 +237,11 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
              << q.min_angle_deg << ", max AMIPS " << q.max_amips << ", " << changes << " splits and collapses" << "\n";
     const bool good = q.min_angle_deg >= o.stop_min_angle_deg || q.max_amips <= o.stop_max_amips;
     // The stop rule of §4.1 applies once the sizes are met: little is left to split or collapse
-    // (2 % of the triangles), or what is left is the churn smoothing and swapping cause (no fewer
-    // changes in 2 iterations).
-    if (changes < fewest_changes) {
-      fewest_changes = changes;
-      since_fewest = 0;
-    } else {
-      ++since_fewest;
-    }
-    if (good && (50 * changes <= q.triangles || since_fewest >= 2)) {
+    // (2 % of the triangles), or what is left no longer shrinks by a fifth per pass (the churn
+    // that smoothing and swapping cause, not sizing work).
+    const bool sizes_met = 50 * changes <= q.triangles || 5 * changes > 4 * previous_changes;
+    previous_changes = changes;
+    if (good && sizes_met) {
       s.stop_reason = "quality";
       ++s.iterations;
       break;
@@ -230,7 +250,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
       best_max = q.max_amips;
       stalled = 0;
       fruitless_refinements = 0;
-    } else if (!good && ++stalled >= 2) {
+    } else if (!good && ++stalled >= 1) {
       // Adaptive sizing (TetWild): refine around the worst triangles when quality stalls, and
       // give up when refining twice in a row brought nothing.
       if (++fruitless_refinements > 2) {

@@ -20,6 +20,8 @@ struct Options {
   // factor times their distance, and it grows away from there by `gradation` per unit length.
   double pinned_size_factor = 3.0;
   double gradation = 1.0;
+  // Smoothing rounds, after each pass, on the vertices of the triangles still above stop_max_amips.
+  int extra_smoothing_rounds = 10;
   std::ostream* log = nullptr;           // one line per iteration when set (--verbose)
 };
 

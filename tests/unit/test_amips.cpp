@@ -2,6 +2,7 @@
 // at the scales drawings come in.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -105,6 +106,21 @@ TEST(MinAngle, KnownTriangles) {
   const double ten = M_PI / 18;  // an isosceles triangle with a 20° apex
   EXPECT_NEAR(min_angle(Vec2(0, 0), Vec2(std::cos(ten), -std::sin(ten)), Vec2(std::cos(ten), std::sin(ten))), M_PI / 9, 1e-12);
   EXPECT_EQ(min_angle(Vec2(0, 0), Vec2(1, 1), Vec2(2, 2)), 0.0);
+}
+
+// min_angle measures only the angle opposite the shortest side: it must be the least of all three.
+TEST(MinAngle, IsTheLeastOfTheThreeAngles) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const auto angle = [](const Vec2& p, const Vec2& q, const Vec2& r) {  // at p, by the law of cosines
+    const double a = (q - r).norm(), b = (p - r).norm(), c = (p - q).norm();
+    return std::acos(std::clamp((b * b + c * c - a * a) / (2 * b * c), -1.0, 1.0));
+  };
+  for (int trial = 0; trial < 10000; ++trial) {
+    const Vec2 a(u(rng), u(rng)), b(u(rng), u(rng)), c(trial % 3 ? Vec2(u(rng), u(rng)) : Vec2(a + 1e-3 * (b - a) + Vec2(0, 1e-9)));
+    const double expected = std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
+    EXPECT_NEAR(min_angle(a, b, c), expected, 1e-6) << "trial " << trial;
+  }
 }
 
 }  // namespace
