@@ -147,6 +147,10 @@ int run_mesh(MeshArgs args) {
                       {"alternative_centres", s.alternative_centres},
                       {"invalid_triangles", s.invalid_triangles},
                       {"min_scaled_jacobian", s.min_scaled_jacobian},
+                      {"max_amips_before_smoothing", s.max_amips_before_smoothing},
+                      {"smoothing_moves", s.smoothing_moves},
+                      {"max_amips", s.max_amips},
+                      {"mean_amips", s.mean_amips},
                       {"max_distance", s.max_distance},
                       {"max_distance_rel", s.max_distance / f.lengths.d}};
     stats["mesh"]["triangles"] = curved->triangles.size();

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
 #include <unordered_map>
 
 #include "geometry/p3_triangle.hpp"
@@ -110,6 +113,7 @@ class Builder {
       else straighten(tri[curved], tri[(curved + 1) % 3]);
     }
     // Final nodes and centres (triangles that lost their curved edge become straight).
+    scaled_.assign(order.size(), 1.0);
     for (std::size_t k = 0; k < order.size(); ++k) {
       const auto& tri = m.triangle(order[k]);
       std::array<int, 10> ids{};
@@ -121,18 +125,33 @@ class Builder {
       }
       ids[9] = static_cast<int>(out_.nodes.size());
       if (curved_edge_of(tri) >= 0) {
-        ++s_.curved_triangles;
         s_.alternative_centres += choice[k] > 0;
-        s_.min_scaled_jacobian = std::min(s_.min_scaled_jacobian, scaled[k]);
+        scaled_[k] = scaled[k];
         out_.nodes.push_back(centre[k]);
       } else {
         out_.nodes.push_back((m.point(tri[0]) + m.point(tri[1]) + m.point(tri[2])) / 3);
         // A straight element's nodes are rounded to doubles too: certify it like the others.
         geometry::P3Nodes p;
         for (int i = 0; i < 10; ++i) p[i] = out_.nodes[ids[i]];
-        s_.invalid_triangles += geometry::certify_jacobian(p).verdict != geometry::JacobianVerdict::positive;
+        const auto cert = geometry::certify_jacobian(p);
+        scaled_[k] = cert.verdict == geometry::JacobianVerdict::positive ? cert.scaled_jacobian : -1.0;
       }
       out_.triangles.push_back(ids);
+    }
+    // Step 4, in part: smoothing where the curved triangles are worse than the stop energy.
+    s_.max_amips_before_smoothing = 0;
+    for (std::size_t t = 0; t < out_.triangles.size(); ++t)
+      s_.max_amips_before_smoothing = std::max(s_.max_amips_before_smoothing, energy(static_cast<int>(t)));
+    smooth();
+    for (std::size_t t = 0; t < out_.triangles.size(); ++t) {
+      const double e = energy(static_cast<int>(t));
+      s_.max_amips = std::max(s_.max_amips, e);
+      s_.mean_amips += e / static_cast<double>(out_.triangles.size());
+      if (scaled_[t] <= 0) ++s_.invalid_triangles;
+      if (curved_edge_of(m.triangle(static_cast<int>(t))) >= 0) {
+        ++s_.curved_triangles;
+        s_.min_scaled_jacobian = std::min(s_.min_scaled_jacobian, scaled_[t]);
+      }
     }
     // Feature lines and edge statistics.
     for (const auto& [edge, f] : m.sorted_features()) {
@@ -147,6 +166,165 @@ class Builder {
   }
 
  private:
+  // ----- Step 4, in part: smoothing of the curved mesh --------------------------------------
+  // The linear mesh was compacted before curving, so triangle t of the curved mesh is triangle t
+  // of out_.linear.
+
+  geometry::P3Nodes nodes_of(int t) const {
+    geometry::P3Nodes p;
+    for (int i = 0; i < 10; ++i) p[i] = out_.nodes[out_.triangles[t][i]];
+    return p;
+  }
+  double energy(int t) const { return geometry::p3_max_amips(nodes_of(t)); }
+
+  // Up to max_smoothing_passes passes over the triangles above stop_amips: the free corners of
+  // each (they move in the plane, their edges stay straight) and its centre node move where the
+  // worst energy around them is lowest, by compass search; a move is kept only when every
+  // triangle it changes is certified and the worst energy among them went down.
+  void smooth() {
+    for (int pass = 0; pass < o_.max_smoothing_passes; ++pass) {
+      std::vector<int> bad;
+      for (std::size_t t = 0; t < out_.triangles.size(); ++t)
+        if (energy(static_cast<int>(t)) > o_.stop_amips) bad.push_back(static_cast<int>(t));
+      if (bad.empty()) return;
+      std::vector<int> corners;
+      for (int t : bad)
+        for (int i = 0; i < 3; ++i)
+          if (out_.linear.tag(out_.triangles[t][i]).kind == mesh::VertexKind::free) corners.push_back(out_.triangles[t][i]);
+      std::sort(corners.begin(), corners.end());
+      corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+      int moved = 0;
+      for (int v : corners) moved += smooth_corner(v);
+      for (int t : bad) moved += smooth_centre(t);
+      s_.smoothing_moves += moved;
+      if (moved == 0) return;
+    }
+  }
+
+  // Compass search: from x0 with the first step h, in 8 directions, halving h when none lowers
+  // `objective`; returns the best point found.
+  template <class Objective>
+  Vec2 compass_search(const Vec2& x0, double h, const Objective& objective) const {
+    Vec2 x = x0;
+    double best = objective(x0);
+    for (int halvings = 0; halvings < 12;) {
+      bool improved = false;
+      for (int d = 0; d < 8; ++d) {
+        const double angle = d * std::numbers::pi / 4;
+        const Vec2 y = x + h * Vec2(std::cos(angle), std::sin(angle));
+        const double e = objective(y);
+        if (e < best) best = e, x = y, improved = true;
+      }
+      if (!improved) h *= 0.5, ++halvings;
+    }
+    return x;
+  }
+
+  // Places the nodes that depend on corner v's position: v, the inner nodes of its (straight)
+  // edges, and the centres of its triangles (straight: the centroid; curved: the candidate of
+  // lowest energy, certified later).
+  void place_corner(int v, const Vec2& p) {
+    out_.nodes[v] = p;
+    for (int t : out_.linear.triangles_of(v)) {
+      auto& ids = out_.triangles[t];
+      for (int i = 0; i < 3; ++i) {
+        const Vec2 &a = out_.nodes[ids[i]], &b = out_.nodes[ids[(i + 1) % 3]];
+        if (ids[i] != v && ids[(i + 1) % 3] != v) continue;
+        out_.nodes[ids[3 + 2 * i]] = (2 * a + b) / 3;
+        out_.nodes[ids[4 + 2 * i]] = (a + 2 * b) / 3;
+      }
+      geometry::P3Nodes q = nodes_of(t);
+      if (curved_edge_of(out_.linear.triangle(t)) < 0) {
+        out_.nodes[ids[9]] = (q[0] + q[1] + q[2]) / 3;
+        continue;
+      }
+      double best = std::numeric_limits<double>::infinity();
+      for (const Vec2& c : centre_candidates(q)) {
+        q[9] = c;
+        if (const double e = geometry::p3_max_amips(q); e < best) best = e, out_.nodes[ids[9]] = c;
+      }
+    }
+  }
+
+  int smooth_corner(int v) {
+    TriMesh& m = out_.linear;
+    const auto& star = m.triangles_of(v);
+    const auto star_energy = [&] {
+      double e = 0;
+      for (int t : star) e = std::max(e, energy(t));
+      return e;
+    };
+    // Everything the move can change, to restore on rejection.
+    std::vector<std::pair<int, Vec2>> saved;
+    for (int t : star)
+      for (int id : out_.triangles[t]) saved.push_back({id, out_.nodes[id]});
+    const auto restore = [&] {
+      for (const auto& [id, x] : saved) out_.nodes[id] = x;
+    };
+    const Vec2 x0 = m.point(v);
+    const double before = star_energy();
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int w : m.neighbours(v)) shortest = std::min(shortest, (m.point(w) - x0).norm());
+    const auto objective = [&](const Vec2& p) {
+      for (int t : star) {  // the corners' triangles stay counter-clockwise too (exactly)
+        const auto& tri = m.triangle(t);
+        if (m.orientation_with(tri[0], tri[1], tri[2], v, p) <= 0) return std::numeric_limits<double>::infinity();
+      }
+      place_corner(v, p);
+      const double e = star_energy();
+      restore();
+      return e;
+    };
+    const Vec2 x = compass_search(x0, 0.25 * shortest, objective);
+    if (x == x0 || !(objective(x) < before)) return 0;
+    place_corner(v, x);
+    std::vector<double> certified;
+    for (int t : star) {
+      const auto cert = certify(t);
+      if (!cert) {
+        restore();
+        return 0;
+      }
+      certified.push_back(*cert);
+    }
+    m.set_position(v, x);
+    for (std::size_t k = 0; k < star.size(); ++k) scaled_[star[k]] = certified[k];
+    return 1;
+  }
+
+  int smooth_centre(int t) {
+    auto& centre = out_.nodes[out_.triangles[t][9]];
+    const Vec2 x0 = centre;
+    const double before = energy(t);
+    geometry::P3Nodes q = nodes_of(t);
+    double size = 0;
+    for (int i = 0; i < 3; ++i) size = std::max(size, (q[i] - q[(i + 1) % 3]).norm());
+    const Vec2 x = compass_search(x0, 0.05 * size, [&](const Vec2& p) {
+      q[9] = p;
+      return geometry::p3_max_amips(q);
+    });
+    q[9] = x;
+    if (x == x0 || !(geometry::p3_max_amips(q) < before)) return 0;
+    centre = x;
+    const auto cert = certify(t);
+    if (!cert) {
+      centre = x0;
+      return 0;
+    }
+    scaled_[t] = *cert;
+    return 1;
+  }
+
+  // The scaled Jacobian of triangle t if it is certified positive.
+  std::optional<double> certify(int t) const {
+    geometry::JacobianCheckOptions check;
+    check.max_depth = o_.certificate_depth;
+    const auto result = geometry::certify_jacobian(nodes_of(t), check);
+    if (result.verdict != geometry::JacobianVerdict::positive) return std::nullopt;
+    return result.scaled_jacobian;
+  }
+
+  // ----- Steps 2 and 3 ------------------------------------------------------------------------
   void add_edge(int a, int b) {
     const auto key = mesh::edge_key(a, b);
     if (first_node_.count(key)) return;
@@ -211,11 +389,15 @@ class Builder {
   // certified, the centre that reproduces quadratic maps exactly, then the corners' centroid.
   // Sets p[9] to the first certified one (its index in `choice`, its scaled Jacobian in
   // `scaled`) and returns true, or returns false.
-  bool choose_centre(geometry::P3Nodes& p, int& choice, double& scaled) const {
+  static std::array<Vec2, 3> centre_candidates(const geometry::P3Nodes& p) {
     const Vec2 sum_corners = p[0] + p[1] + p[2];
     Vec2 sum_edges = Vec2::Zero();
     for (int i = 3; i < 9; ++i) sum_edges += p[i];
-    const std::array<Vec2, 3> centres{(sum_corners + sum_edges) / 9, sum_edges / 4 - sum_corners / 6, sum_corners / 3};
+    return {(sum_corners + sum_edges) / 9, sum_edges / 4 - sum_corners / 6, sum_corners / 3};
+  }
+
+  bool choose_centre(geometry::P3Nodes& p, int& choice, double& scaled) const {
+    const std::array<Vec2, 3> centres = centre_candidates(p);
     for (int k = 0; k < 3; ++k) {
       p[9] = centres[k];
       geometry::JacobianCheckOptions check;
@@ -250,6 +432,7 @@ class Builder {
   Stats& s_;
   std::unordered_map<std::uint64_t, int> first_node_;
   std::unordered_map<std::uint64_t, bool> curved_;
+  std::vector<double> scaled_;  // per triangle: its scaled Jacobian, or −1 if not certified
 };
 
 }  // namespace

@@ -26,6 +26,10 @@ using geometry::Vec2;
 
 struct Options {
   int certificate_depth = 10;  // subdivision levels of the Jacobian certificate
+  // Step 4 (§4.2): smoothing of the curved mesh stops once every triangle's AMIPS energy is at
+  // most this, or after this many passes.
+  double stop_amips = 20;
+  int max_smoothing_passes = 10;
 };
 
 struct Stats {
@@ -38,6 +42,11 @@ struct Stats {
   double min_scaled_jacobian = 1;  // over curved triangles (geometry::JacobianCertificate)
   int invalid_triangles = 0;    // triangles whose map is not certified (0 in a mesh that is written)
   double max_distance = 0;      // largest distance from a straight primary edge to its curve
+  // Quality of the curved mesh: the conformal AMIPS energy of each triangle's map, its largest
+  // value over the triangle (geometry::p3_max_amips); the largest and the mean over triangles.
+  double max_amips = 0, mean_amips = 0;
+  double max_amips_before_smoothing = 0;  // the same before step 4
+  int smoothing_moves = 0;                // corner and centre moves step 4 kept
   double seconds = 0;
 };
 

@@ -41,6 +41,23 @@ Eigen::Matrix2d p3_jacobian(const P3Nodes& nodes, double u, double v) {
   return J;
 }
 
+double p3_amips(const P3Nodes& nodes, double u, double v) {
+  // J_ref = [x_u x_v]; from the equilateral triangle, J = J_ref [[1, −1/√3], [0, 2/√3]]: the
+  // same expression as geometry::amips with e1 = x_u and e2 = x_v.
+  const Eigen::Matrix2d J = p3_jacobian(nodes, u, v);
+  const Vec2 e1 = J.col(0), e2 = J.col(1), f = 2 * e2 - e1;
+  const double det = e1.x() * e2.y() - e1.y() * e2.x();
+  if (!(det > 0)) return std::numeric_limits<double>::infinity();
+  return (3 * e1.squaredNorm() + f.squaredNorm()) / (3.4641016151377544 * det);
+}
+
+double p3_max_amips(const P3Nodes& nodes) {
+  double e = 0;
+  for (int j = 0; j <= 6; ++j)
+    for (int k = 0; j + k <= 6; ++k) e = std::max(e, p3_amips(nodes, j / 6.0, k / 6.0));
+  return e;
+}
+
 namespace {
 
 // ---------------------------------------------------------------------------------------------

@@ -54,6 +54,14 @@ P3Nodes p3_straight_nodes(const Vec2& a, const Vec2& b, const Vec2& c);
 Vec2 p3_map(const P3Nodes& nodes, double u, double v);
 Eigen::Matrix2d p3_jacobian(const P3Nodes& nodes, double u, double v);
 
+// The conformal AMIPS energy of the map at a reference point: ‖J‖²/det J with J the Jacobian
+// taken from the equilateral reference triangle, so 2 where the map is conformal and +∞ where
+// det J ≤ 0; for straight nodes it equals geometry::amips of the corners everywhere.
+double p3_amips(const P3Nodes& nodes, double u, double v);
+// Its largest value over the 28 points of the order-6 lattice (corners, edges and inside): the
+// quality measure of a curved triangle (validity is certify_jacobian's business, not this one's).
+double p3_max_amips(const P3Nodes& nodes);
+
 // Exact conversion of double nodes to rationals (every finite double is rational).
 P3NodesT<mpq_class> to_exact(const P3Nodes& nodes);
 P3NodesT<double> to_array(const P3Nodes& nodes);

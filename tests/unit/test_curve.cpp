@@ -120,6 +120,53 @@ TEST(Curve, AnEdgeThatWouldFoldItsTriangleStaysStraight) {
   EXPECT_LE(s.max_distance, 1e-15);  // the cubic edge is the cubic curve
 }
 
+TEST(Curve, SmoothingLiftsAFreeCornerAboveACurvedEdge) {
+  // A primary edge a-b bulging 0.03 into its triangle a-b-c, whose free corner c sits only 0.08
+  // above it: curved, the triangle is valid but poor (AMIPS above 20). Step 4 moves c (and the
+  // centre nodes) until the energy is at most 20, keeping every triangle certified.
+  mesh::TriMesh m;
+  mesh::VertexTag fixed, free;
+  fixed.kind = mesh::VertexKind::fixed;
+  free.kind = mesh::VertexKind::free;
+  const int a = m.add_vertex({0, 0}, fixed), b = m.add_vertex({1, 0}, fixed), c = m.add_vertex({0.5, 0.08}, free);
+  const int d = m.add_vertex({0.5, -1}, fixed), t1 = m.add_vertex({0, 1}, fixed), t2 = m.add_vertex({1, 1}, fixed);
+  m.add_triangle(a, b, c);
+  m.add_triangle(a, d, b);
+  m.add_triangle(a, c, t1);
+  m.add_triangle(c, b, t2);
+  m.add_triangle(c, t2, t1);
+  mesh::Constraints constraints;
+  mesh::SectionCurve curve;
+  curve.piece = geometry::CubicBezier({0, 0}, {0.3, 0.04}, {0.7, 0.04}, {1, 0});
+  constraints.sections.push_back(curve);
+  m.set_feature(a, b, {EdgeKind::primary, 0, 0, 0.0, 1.0});
+
+  curve::Options unsmoothed;
+  unsmoothed.max_smoothing_passes = 0;
+  curve::Stats before;
+  curve::curve(m, constraints, unsmoothed, &before);
+  EXPECT_EQ(before.curved_edges, 1);
+  EXPECT_GT(before.max_amips, 20);
+  EXPECT_EQ(before.max_amips, before.max_amips_before_smoothing);
+
+  curve::Stats s;
+  const curve::CurvedMesh out = curve::curve(m, constraints, {}, &s);
+  EXPECT_EQ(s.curved_edges, 1);
+  EXPECT_DOUBLE_EQ(s.max_amips_before_smoothing, before.max_amips);
+  EXPECT_GT(s.smoothing_moves, 0);
+  EXPECT_LE(s.max_amips, 20);
+  EXPECT_GT(out.linear.point(c).y(), 0.08);
+  EXPECT_EQ(out.nodes[c], out.linear.point(c));
+  EXPECT_EQ(s.invalid_triangles, 0);
+  for (std::size_t t = 0; t < out.triangles.size(); ++t) {
+    EXPECT_EQ(geometry::certify_jacobian_exact(nodes_of(out, t)), geometry::JacobianVerdict::positive);
+    EXPECT_LE(geometry::p3_max_amips(nodes_of(out, t)), s.max_amips);
+  }
+  // The fixed corners did not move, and the curved edge still is the curve.
+  for (int v : {a, b, d, t1, t2}) EXPECT_EQ(out.nodes[v], m.point(v));
+  EXPECT_LE(s.max_distance, 1e-15);
+}
+
 TEST(Curve, TrianglesWithSeveralPrimaryEdgesAreSplit) {
   // One triangle whose three edges are primary (a small closed polygon meshed as one triangle)
   // inside a box: after curving, every triangle has at most one primary edge.

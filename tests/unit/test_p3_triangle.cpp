@@ -6,10 +6,12 @@
 #include <Eigen/LU>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "geometry/amips.hpp"
 #include "geometry/p3_triangle.hpp"
 
 namespace curvemesh::geometry {
@@ -283,6 +285,45 @@ TEST(P3Certify, DoubleAgreesWithExactAtAnyScale) {
   EXPECT_GT(counts[static_cast<int>(JacobianVerdict::not_positive)], 300);
   EXPECT_LT(counts[static_cast<int>(JacobianVerdict::undecided)], 5);
   EXPECT_GT(subdivided, 100);  // many were decided only below the element's own coefficients
+}
+
+}  // namespace
+}  // namespace curvemesh::geometry
+
+namespace curvemesh::geometry {
+namespace {
+
+TEST(P3Amips, StraightNodesGiveTheLinearEnergyEverywhere) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1), w(0, 1);
+  for (int trial = 0; trial < 200; ++trial) {
+    Vec2 a(u(rng), u(rng)), b(u(rng), u(rng)), c(u(rng), u(rng));
+    if ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x() < 0) std::swap(b, c);
+    const P3Nodes n = p3_straight_nodes(a, b, c);
+    const double expected = amips(a, b, c);
+    const double s = w(rng), t = (1 - s) * w(rng);
+    EXPECT_NEAR(p3_amips(n, s, t), expected, 1e-9 * expected) << "trial " << trial;
+    EXPECT_NEAR(p3_max_amips(n), expected, 1e-9 * expected) << "trial " << trial;
+  }
+  const P3Nodes equilateral = p3_straight_nodes(Vec2(0, 0), Vec2(1, 0), Vec2(0.5, std::sqrt(3.0) / 2));
+  EXPECT_NEAR(p3_max_amips(equilateral), 2.0, 1e-12);
+}
+
+TEST(P3Amips, BendingAnEdgeRaisesTheEnergyAndFoldingMakesItInfinite) {
+  P3Nodes n = p3_straight_nodes(Vec2(0, 0), Vec2(1, 0), Vec2(0.5, std::sqrt(3.0) / 2));
+  double previous = p3_max_amips(n);
+  for (double bulge : {0.05, 0.1, 0.2}) {  // the edge from node 0 to node 1 bends outwards
+    P3Nodes b = n;
+    b[3] += Vec2(0, -bulge);
+    b[4] += Vec2(0, -bulge);
+    const double e = p3_max_amips(b);
+    EXPECT_GT(e, previous);
+    previous = e;
+  }
+  P3Nodes folded = n;
+  folded[3] += Vec2(0, 1.5);  // across the opposite corner: det J < 0 somewhere
+  folded[4] += Vec2(0, 1.5);
+  EXPECT_EQ(p3_max_amips(folded), std::numeric_limits<double>::infinity());
 }
 
 }  // namespace
