@@ -114,7 +114,14 @@ double end_tangent_angle(const CubicBezier& c, double t0, double t1) {
 }
 
 bool turns_monotonically(const CubicBezier& c) {
-  return inflection_parameters(c).empty() && turning_angle(c) < kPi;
+  const double whole = turning_angle(c);
+  if (!(whole < kPi)) return false;
+  // A piece split off at an inflection keeps it, by rounding, within ~1e-12 of its end: harmless,
+  // as long as the curve turns by next to nothing there, which the last test makes sure of.
+  constexpr double kEndMargin = 1e-9;
+  for (const double t : inflection_parameters(c))
+    if (t > kEndMargin && t < 1 - kEndMargin) return false;
+  return std::abs(whole - end_tangent_angle(c, 0.0, 1.0)) <= 1e-10;
 }
 
 double half_turning_parameter(const CubicBezier& c) {

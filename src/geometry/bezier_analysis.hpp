@@ -25,7 +25,9 @@ double turning_angle(const CubicBezier& c, double t0 = 0.0, double t1 = 1.0);
 double end_tangent_angle(const CubicBezier& c, double t0, double t1);
 
 // True when c has no inflection inside (0, 1) and turns by less than π: then end_tangent_angle
-// is its turning on every sub-interval.
+// is its turning on every sub-interval. An inflection within 1e-9 of an end (what rounding leaves
+// on a piece split off at an inflection) is ignored when the whole turning and the end-tangent
+// angle still agree to 1e-10.
 bool turns_monotonically(const CubicBezier& c);
 
 // §4 "Total curvature split": the t in (0, 1) where the tangent is parallel to the average of the

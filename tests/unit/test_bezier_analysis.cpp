@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <numbers>
 
 #include "geometry/bezier_analysis.hpp"
@@ -159,4 +160,28 @@ TEST(Turning, EndTangentAngleIsTheTurningOfMonotonePieces) {
   EXPECT_FALSE(turns_monotonically({{0, 0}, {1, 1}, {2, -1}, {3, 0}}));   // an S: one inflection
   EXPECT_FALSE(turns_monotonically({{0, 0}, {2, 2}, {-1, 2}, {1, 0}}));   // a loop: 270°
   EXPECT_NEAR(end_tangent_angle(CubicBezier::line({0, 0}, {3, 4}), 0.2, 0.9), 0.0, 1e-15);
+}
+
+TEST(Turning, PiecesSplitAtAnInflectionAreMonotone) {
+  // The halves of S-curves split at their inflection: rounding may leave the inflection a hair
+  // inside a half, which must not cost the half its monotone turning.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int split = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const CubicBezier c({0, 0}, {1 + u(rng), 1 + u(rng)}, {2 + u(rng), -1 + u(rng)}, {3, 0});
+    const auto inflections = inflection_parameters(c);
+    if (inflections.size() != 1 || turning_angle(c) >= kPi) continue;
+    const auto [first, second] = c.split(inflections[0]);
+    for (const CubicBezier& half : {first, second}) {
+      if (turning_angle(half) >= kPi) continue;
+      EXPECT_TRUE(turns_monotonically(half)) << "trial " << trial;
+      for (double a : {0.0, 0.3})
+        for (double b : {0.6, 1.0}) EXPECT_NEAR(end_tangent_angle(half, a, b), sampled_turning(half, a, b), 1e-6);
+    }
+    ++split;
+  }
+  EXPECT_GT(split, 100);
+  // An inflection well inside still makes a piece non-monotone.
+  EXPECT_FALSE(turns_monotonically(CubicBezier({0, 0}, {1, 1}, {2, -1}, {3, 0}).subcurve(0.0, 0.5 + 1e-6)));
 }
