@@ -178,8 +178,9 @@ class Builder {
   double energy(int t) const { return geometry::p3_max_amips(nodes_of(t)); }
 
   // Up to max_smoothing_passes passes over the triangles above stop_amips: the free corners of
-  // each (they move in the plane, their edges stay straight) and its centre node move where the
-  // worst energy around them is lowest, by compass search; a move is kept only when every
+  // each (they move in the plane, their edges stay straight), its corners on curves (they slide
+  // along their curve, their curved edges follow) and its centre node move where the worst
+  // energy around them is lowest, by compass search; a move is kept only when every
   // triangle it changes is certified and the worst energy among them went down.
   void smooth() {
     for (int pass = 0; pass < o_.max_smoothing_passes; ++pass) {
@@ -189,12 +190,15 @@ class Builder {
       if (bad.empty()) return;
       std::vector<int> corners;
       for (int t : bad)
-        for (int i = 0; i < 3; ++i)
-          if (out_.linear.tag(out_.triangles[t][i]).kind == mesh::VertexKind::free) corners.push_back(out_.triangles[t][i]);
+        for (int i = 0; i < 3; ++i) corners.push_back(out_.triangles[t][i]);
       std::sort(corners.begin(), corners.end());
       corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
       int moved = 0;
-      for (int v : corners) moved += smooth_corner(v);
+      for (int v : corners) {
+        const mesh::VertexTag& tag = out_.linear.tag(v);
+        if (tag.kind == mesh::VertexKind::free) moved += smooth_corner(v);
+        else if (tag.kind == mesh::VertexKind::primary && tag.on_curve) moved += smooth_curve_corner(v);
+      }
       for (int t : bad) moved += smooth_centre(t);
       s_.smoothing_moves += moved;
       if (moved == 0) return;
@@ -220,21 +224,27 @@ class Builder {
     return x;
   }
 
-  // Places the nodes that depend on corner v's position: v, the inner nodes of its (straight)
-  // edges, and the centres of its triangles (straight: the centroid; curved: the candidate of
-  // lowest energy, certified later).
+  // Places the nodes that depend on corner v's position (and, on a curve, on its parameter): v,
+  // the inner nodes of its edges (curved ones on their curve, at thirds of their parameter
+  // interval; straight ones at thirds), and the centres of its triangles (straight: the
+  // centroid; curved: the candidate of lowest energy, certified later).
   void place_corner(int v, const Vec2& p) {
     out_.nodes[v] = p;
-    for (int t : out_.linear.triangles_of(v)) {
+    const TriMesh& m = out_.linear;
+    for (int t : m.triangles_of(v)) {
       auto& ids = out_.triangles[t];
       for (int i = 0; i < 3; ++i) {
-        const Vec2 &a = out_.nodes[ids[i]], &b = out_.nodes[ids[(i + 1) % 3]];
-        if (ids[i] != v && ids[(i + 1) % 3] != v) continue;
-        out_.nodes[ids[3 + 2 * i]] = (2 * a + b) / 3;
-        out_.nodes[ids[4 + 2 * i]] = (a + 2 * b) / 3;
+        const int a = ids[i], b = ids[(i + 1) % 3];
+        if (a != v && b != v) continue;
+        if (curved_.at(mesh::edge_key(a, b))) {
+          place_on_curve(std::min(a, b), std::max(a, b));
+        } else {
+          out_.nodes[ids[3 + 2 * i]] = (2 * out_.nodes[a] + out_.nodes[b]) / 3;
+          out_.nodes[ids[4 + 2 * i]] = (out_.nodes[a] + 2 * out_.nodes[b]) / 3;
+        }
       }
       geometry::P3Nodes q = nodes_of(t);
-      if (curved_edge_of(out_.linear.triangle(t)) < 0) {
+      if (curved_edge_of(m.triangle(t)) < 0) {
         out_.nodes[ids[9]] = (q[0] + q[1] + q[2]) / 3;
         continue;
       }
@@ -244,6 +254,105 @@ class Builder {
         if (const double e = geometry::p3_max_amips(q); e < best) best = e, out_.nodes[ids[9]] = c;
       }
     }
+  }
+
+  // The two neighbours of primary vertex v along its section, and their parameters.
+  struct CurveNeighbours {
+    int x = -1, y = -1;
+    double tx = 0, ty = 0;
+  };
+
+  // A primary corner at parameter t of its curve: its tag and the parameters of its two edges
+  // along the curve follow.
+  void place_on_curve_at(int v, const CurveNeighbours& n, double t) {
+    TriMesh& m = out_.linear;
+    mesh::VertexTag tag = m.tag(v);
+    tag.t = t;
+    m.set_tag(v, tag);
+    for (int w : {n.x, n.y}) {
+      mesh::EdgeFeature f = *m.feature(v, w);
+      (v < w ? f.t_lo : f.t_hi) = t;
+      m.set_feature(v, w, f);
+    }
+    place_corner(v, c_.sections[tag.section].eval(t));
+  }
+
+  bool curve_neighbours(int v, CurveNeighbours& n) const {
+    const TriMesh& m = out_.linear;
+    const mesh::VertexTag& tag = m.tag(v);
+    int found = 0;
+    for (int t : m.triangles_of(v))
+      for (int w : m.triangle(t)) {
+        const mesh::EdgeFeature* f = w == v ? nullptr : m.feature(v, w);
+        if (!f || f->kind != EdgeKind::primary || f->source != tag.section || w == n.x || w == n.y) continue;
+        const double tw = w < v ? f->t_lo : f->t_hi;
+        if (found == 0) n.x = w, n.tx = tw;
+        else if (found == 1) n.y = w, n.ty = tw;
+        ++found;
+      }
+    return found == 2;
+  }
+
+  // A primary corner (on its curve, inside its section) slides along the curve between its two
+  // curve neighbours; the curve's turning per edge no longer matters once the edges are curved
+  // (§4.2), only the certificate does.
+  int smooth_curve_corner(int v) {
+    TriMesh& m = out_.linear;
+    const mesh::VertexTag tag0 = m.tag(v);
+    CurveNeighbours n;
+    if (!curve_neighbours(v, n)) return 0;
+    const auto& star = m.triangles_of(v);
+    const auto star_energy = [&] {
+      double e = 0;
+      for (int t : star) e = std::max(e, energy(t));
+      return e;
+    };
+    std::vector<std::pair<int, Vec2>> saved;
+    for (int t : star)
+      for (int id : out_.triangles[t]) saved.push_back({id, out_.nodes[id]});
+    const mesh::EdgeFeature fx = *m.feature(v, n.x), fy = *m.feature(v, n.y);
+    const auto restore = [&] {
+      for (const auto& [id, x] : saved) out_.nodes[id] = x;
+      m.set_tag(v, tag0);
+      m.set_feature(v, n.x, fx);
+      m.set_feature(v, n.y, fy);
+    };
+    const mesh::SectionCurve& curve = c_.sections[tag0.section];
+    const double lo = std::min(n.tx, n.ty), hi = std::max(n.tx, n.ty), margin = 1e-3 * (hi - lo);
+    const auto objective = [&](double t) {
+      if (!(t > lo + margin && t < hi - margin)) return std::numeric_limits<double>::infinity();
+      const Vec2 p = curve.eval(t);
+      for (int s : star) {
+        const auto& tri = m.triangle(s);
+        if (m.orientation_with(tri[0], tri[1], tri[2], v, p) <= 0) return std::numeric_limits<double>::infinity();
+      }
+      place_on_curve_at(v, n, t);
+      const double e = star_energy();
+      restore();
+      return e;
+    };
+    const double before = star_energy();
+    double t = tag0.t, best = before, h = 0.25 * std::min(t - lo, hi - t);
+    for (int halvings = 0; halvings < 12;) {
+      bool improved = false;
+      for (const double step : {h, -h})
+        if (const double e = objective(t + step); e < best) best = e, t += step, improved = true;
+      if (!improved) h *= 0.5, ++halvings;
+    }
+    if (t == tag0.t || !(best < before)) return 0;
+    place_on_curve_at(v, n, t);
+    std::vector<double> certified;
+    for (int s : star) {
+      const auto cert = certify(s);
+      if (!cert) {
+        restore();
+        return 0;
+      }
+      certified.push_back(*cert);
+    }
+    m.set_position(v, out_.nodes[v]);
+    for (std::size_t k = 0; k < star.size(); ++k) scaled_[star[k]] = certified[k];
+    return 1;
   }
 
   int smooth_corner(int v) {

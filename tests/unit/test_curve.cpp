@@ -167,6 +167,55 @@ TEST(Curve, SmoothingLiftsAFreeCornerAboveACurvedEdge) {
   EXPECT_LE(s.max_distance, 1e-15);
 }
 
+TEST(Curve, SmoothingSlidesACornerAlongItsCurve) {
+  // A primary vertex v close to one end of its curve (a-v-b, all fixed around): the triangle
+  // a-v-c is a sliver once a-v is curved. Step 4 slides v along the curve; v stays on it, its
+  // edges' parameters follow, and their inner nodes are the curve's points at the new thirds.
+  mesh::TriMesh m;
+  mesh::VertexTag fixed, on_curve;
+  fixed.kind = mesh::VertexKind::fixed;
+  const geometry::CubicBezier arc({0, 0}, {2.0 / 3, 0.2}, {4.0 / 3, 0.2}, {2, 0});
+  on_curve.kind = mesh::VertexKind::primary;
+  on_curve.section = 0;
+  on_curve.t = 0.04;
+  const int a = m.add_vertex({0, 0}, fixed), b = m.add_vertex({2, 0}, fixed);
+  const int v = m.add_vertex(arc.eval(0.04), on_curve);
+  const int c = m.add_vertex({0.3, 0.35}, fixed), e = m.add_vertex({2, 1}, fixed), d = m.add_vertex({1, -1}, fixed);
+  m.add_triangle(a, v, c);
+  m.add_triangle(v, b, e);
+  m.add_triangle(v, e, c);
+  m.add_triangle(a, d, v);
+  m.add_triangle(v, d, b);
+  mesh::Constraints constraints;
+  mesh::SectionCurve curve;
+  curve.piece = arc;
+  constraints.sections.push_back(curve);
+  m.set_feature(a, v, {EdgeKind::primary, 0, 0, 0.0, 0.04});
+  m.set_feature(v, b, {EdgeKind::primary, 0, 0, 1.0, 0.04});  // t_lo belongs to b (b < v)
+
+  curve::Options unsmoothed;
+  unsmoothed.max_smoothing_passes = 0;
+  curve::Stats before;
+  curve::curve(m, constraints, unsmoothed, &before);
+  ASSERT_EQ(before.curved_edges, 2);
+  ASSERT_GT(before.max_amips, 20);
+
+  curve::Stats s;
+  const curve::CurvedMesh out = curve::curve(m, constraints, {}, &s);
+  EXPECT_GT(s.smoothing_moves, 0);
+  EXPECT_LT(s.max_amips, before.max_amips);
+  EXPECT_EQ(s.curved_edges, 2);
+  const double t = out.linear.tag(v).t;
+  EXPECT_GT(t, 0.04);
+  EXPECT_EQ(out.linear.point(v), arc.eval(t));
+  EXPECT_EQ(out.nodes[v], arc.eval(t));
+  EXPECT_EQ(out.linear.feature(a, v)->t_hi, t);
+  EXPECT_EQ(out.linear.feature(v, b)->t_hi, t);
+  EXPECT_LE(s.max_distance, 1e-15);  // both edges still are the curve
+  for (std::size_t k = 0; k < out.triangles.size(); ++k)
+    EXPECT_EQ(geometry::certify_jacobian_exact(nodes_of(out, k)), geometry::JacobianVerdict::positive);
+}
+
 TEST(Curve, TrianglesWithSeveralPrimaryEdgesAreSplit) {
   // One triangle whose three edges are primary (a small closed polygon meshed as one triangle)
   // inside a box: after curving, every triangle has at most one primary edge.
