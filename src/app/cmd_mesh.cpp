@@ -142,6 +142,7 @@ int run_mesh(MeshArgs args) {
     stats["curve"] = {{"split_triangles", s.split_triangles},
                       {"primary_edges", s.primary_edges},
                       {"curved_edges", s.curved_edges},
+                      {"fitted_edges", s.fitted_edges},
                       {"straight_primary_edges", s.straight_primary_edges},
                       {"curved_triangles", s.curved_triangles},
                       {"alternative_centres", s.alternative_centres},
@@ -149,10 +150,12 @@ int run_mesh(MeshArgs args) {
                       {"min_scaled_jacobian", s.min_scaled_jacobian},
                       {"max_amips_before_smoothing", s.max_amips_before_smoothing},
                       {"smoothing_moves", s.smoothing_moves},
+                      {"late_projections", s.late_projections},
                       {"max_amips", s.max_amips},
                       {"mean_amips", s.mean_amips},
                       {"max_distance", s.max_distance},
-                      {"max_distance_rel", s.max_distance / f.lengths.d}};
+                      {"max_distance_rel", s.max_distance / f.lengths.d},
+                      {"mean_fit_distance_rel", s.mean_fit_distance / f.lengths.d}};
     stats["mesh"]["triangles"] = curved->triangles.size();
     if (s.invalid_triangles > 0) {
       std::cerr << "curvemesh: internal error: " << args.input << ": " << s.invalid_triangles

@@ -7,7 +7,11 @@
 #include <numbers>
 #include <optional>
 #include <unordered_map>
+#include <unordered_set>
 
+#include <Eigen/LU>
+
+#include "geometry/closest_point.hpp"
 #include "geometry/p3_triangle.hpp"
 #include "mesh/operations.hpp"
 
@@ -142,13 +146,21 @@ class Builder {
     s_.max_amips_before_smoothing = 0;
     for (std::size_t t = 0; t < out_.triangles.size(); ++t)
       s_.max_amips_before_smoothing = std::max(s_.max_amips_before_smoothing, energy(static_cast<int>(t)));
+    // Primary vertices the linear optimization could not bring onto their curve (Fig. 8): now
+    // that edges bend, they may get there.
+    for (int v = 0; v < m.vertex_count(); ++v)
+      if (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) s_.late_projections += project(v);
     smooth();
+    // Step 5: the primary edges still straight.
+    for (const auto& [edge, f] : m.sorted_features())
+      if (f.kind == EdgeKind::primary && !curved_.at(mesh::edge_key(edge[0], edge[1])) && followable(m, edge[0], edge[1]))
+        fit(edge[0], edge[1]);
     for (std::size_t t = 0; t < out_.triangles.size(); ++t) {
       const double e = energy(static_cast<int>(t));
       s_.max_amips = std::max(s_.max_amips, e);
       s_.mean_amips += e / static_cast<double>(out_.triangles.size());
       if (scaled_[t] <= 0) ++s_.invalid_triangles;
-      if (curved_edge_of(m.triangle(static_cast<int>(t))) >= 0) {
+      if (curved_edge_of(m.triangle(static_cast<int>(t))) >= 0 || fitted_edge_of(m.triangle(static_cast<int>(t))) >= 0) {
         ++s_.curved_triangles;
         s_.min_scaled_jacobian = std::min(s_.min_scaled_jacobian, scaled_[t]);
       }
@@ -159,10 +171,19 @@ class Builder {
       out_.lines.push_back({{edge[0], edge[1], first, second}, f.kind});
       if (f.kind != EdgeKind::primary) continue;
       ++s_.primary_edges;
-      const bool curved = curved_.at(mesh::edge_key(edge[0], edge[1]));
-      (curved ? s_.curved_edges : s_.straight_primary_edges) += 1;
-      s_.max_distance = std::max(s_.max_distance, distance_to_curve(edge[0], edge[1], f, first, second));
+      const auto key = mesh::edge_key(edge[0], edge[1]);
+      const double distance = distance_to_curve(edge[0], edge[1], f, first, second);
+      if (curved_.at(key)) {
+        ++s_.curved_edges;
+      } else if (fitted_.count(key)) {
+        ++s_.fitted_edges;
+        s_.mean_fit_distance += distance;
+      } else {
+        ++s_.straight_primary_edges;
+      }
+      s_.max_distance = std::max(s_.max_distance, distance);
     }
+    if (s_.fitted_edges > 0) s_.mean_fit_distance /= s_.fitted_edges;
   }
 
  private:
@@ -227,7 +248,7 @@ class Builder {
   // Places the nodes that depend on corner v's position (and, on a curve, on its parameter): v,
   // the inner nodes of its edges (curved ones on their curve, at thirds of their parameter
   // interval; straight ones at thirds), and the centres of its triangles (straight: the
-  // centroid; curved: the candidate of lowest energy, certified later).
+  // centroid; curved: the candidate of lowest badness, certified later).
   void place_corner(int v, const Vec2& p) {
     out_.nodes[v] = p;
     const TriMesh& m = out_.linear;
@@ -243,16 +264,11 @@ class Builder {
           out_.nodes[ids[4 + 2 * i]] = (out_.nodes[a] + 2 * out_.nodes[b]) / 3;
         }
       }
-      geometry::P3Nodes q = nodes_of(t);
       if (curved_edge_of(m.triangle(t)) < 0) {
-        out_.nodes[ids[9]] = (q[0] + q[1] + q[2]) / 3;
+        out_.nodes[ids[9]] = (out_.nodes[ids[0]] + out_.nodes[ids[1]] + out_.nodes[ids[2]]) / 3;
         continue;
       }
-      double best = std::numeric_limits<double>::infinity();
-      for (const Vec2& c : centre_candidates(q)) {
-        q[9] = c;
-        if (const double e = geometry::p3_max_amips(q); e < best) best = e, out_.nodes[ids[9]] = c;
-      }
+      choose_centre_of(t);
     }
   }
 
@@ -355,6 +371,52 @@ class Builder {
     return 1;
   }
 
+  // Moves primary vertex v, still off its curve, to its closest point on the curve (between its
+  // two curve neighbours); its edges along the curve become curved where their other end is on
+  // the curve too. Kept only if the corners' triangles stay counter-clockwise and every changed
+  // triangle is certified.
+  int project(int v) {
+    TriMesh& m = out_.linear;
+    const mesh::VertexTag tag0 = m.tag(v);
+    CurveNeighbours n;
+    if (!curve_neighbours(v, n)) return 0;
+    const mesh::SectionCurve& curve = c_.sections[tag0.section];
+    const double lo = std::min(n.tx, n.ty), hi = std::max(n.tx, n.ty), margin = 1e-3 * (hi - lo);
+    const geometry::ClosestPoint cp = geometry::closest_point(curve.piece, m.point(v));
+    const double t = std::clamp(curve.t0 + cp.t * (curve.t1 - curve.t0), lo + margin, hi - margin);
+    const Vec2 p = curve.eval(t);
+    const auto& star = m.triangles_of(v);
+    for (int s : star) {
+      const auto& tri = m.triangle(s);
+      if (m.orientation_with(tri[0], tri[1], tri[2], v, p) <= 0) return 0;
+    }
+    std::vector<std::pair<int, Vec2>> saved;
+    for (int s : star)
+      for (int id : out_.triangles[s]) saved.push_back({id, out_.nodes[id]});
+    const mesh::EdgeFeature fx = *m.feature(v, n.x), fy = *m.feature(v, n.y);
+    mesh::VertexTag tag = tag0;
+    tag.on_curve = true;
+    m.set_tag(v, tag);
+    for (int w : {n.x, n.y}) curved_[mesh::edge_key(v, w)] = followable(m, v, w);
+    place_on_curve_at(v, n, t);
+    std::vector<double> certified;
+    for (int s : star) {
+      const auto cert = certify(s);
+      if (!cert) {
+        for (const auto& [id, x] : saved) out_.nodes[id] = x;
+        m.set_tag(v, tag0);
+        m.set_feature(v, n.x, fx);
+        m.set_feature(v, n.y, fy);
+        for (int w : {n.x, n.y}) curved_[mesh::edge_key(v, w)] = false;
+        return 0;
+      }
+      certified.push_back(*cert);
+    }
+    m.set_position(v, p);
+    for (std::size_t k = 0; k < star.size(); ++k) scaled_[star[k]] = certified[k];
+    return 1;
+  }
+
   int smooth_corner(int v) {
     TriMesh& m = out_.linear;
     const auto& star = m.triangles_of(v);
@@ -431,6 +493,146 @@ class Builder {
     const auto result = geometry::certify_jacobian(nodes_of(t), check);
     if (result.verdict != geometry::JacobianVerdict::positive) return std::nullopt;
     return result.scaled_jacobian;
+  }
+
+  // ----- Step 5: edges that could not follow their curve exactly --------------------------------
+
+  // How far triangle t is from valid, or how good it is: its worst AMIPS energy when det J > 0 at
+  // every point of the order-6 lattice, else 1e12 less the smallest det J there over the squared
+  // longest side (lower is better either way; only a certificate decides validity).
+  double badness(int t) const {
+    const geometry::P3Nodes p = nodes_of(t);
+    double lo = std::numeric_limits<double>::infinity();
+    for (int j = 0; j <= 6; ++j)
+      for (int k = 0; j + k <= 6; ++k) lo = std::min(lo, geometry::p3_jacobian(p, j / 6.0, k / 6.0).determinant());
+    if (lo > 0) return geometry::p3_max_amips(p);
+    double side = 0;
+    for (int i = 0; i < 3; ++i) side = std::max(side, (p[i] - p[(i + 1) % 3]).squaredNorm());
+    return 1e12 - (side > 0 ? lo / side : -1e6);
+  }
+
+  // The centre of triangle t (its edge nodes placed) among the candidates: the lowest badness.
+  void choose_centre_of(int t) {
+    geometry::P3Nodes q = nodes_of(t);
+    Vec2& centre = out_.nodes[out_.triangles[t][9]];
+    double best = std::numeric_limits<double>::infinity();
+    for (const Vec2& c : centre_candidates(q)) {
+      const Vec2 keep = centre;
+      centre = c;
+      if (const double b = badness(t); b < best) best = b;
+      else centre = keep;
+    }
+  }
+
+  // §4.2 step 5 for primary edge (a, b), whose triangles cannot be certified with the edge on its
+  // curve. First the edge is put on its curve and the centre nodes and the free opposite corners
+  // move (compass search on badness) until both triangles are certified; failing that, the edge's
+  // two inner nodes are fitted: the largest blend s·(curve) + (1 − s)·(chord) with both triangles
+  // certified, s by bisection (the least-squares fit to the curve along the one direction in which
+  // the straight edge is known to be valid). The remaining distance is recorded in the stats.
+  void fit(int a, int b) {
+    TriMesh& m = out_.linear;
+    const auto key = mesh::edge_key(a, b);
+    const int lo = std::min(a, b), hi = std::max(a, b);
+    const std::vector<int> triangles = m.edge_triangles(a, b);
+    // Everything that can change: the triangles of the edge and the stars of their free corners.
+    std::vector<int> touched = triangles, movable;
+    for (int t : triangles)
+      for (int v : m.triangle(t))
+        if (v != a && v != b && m.tag(v).kind == mesh::VertexKind::free) {
+          movable.push_back(v);
+          touched.insert(touched.end(), m.triangles_of(v).begin(), m.triangles_of(v).end());
+        }
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    std::vector<std::pair<int, Vec2>> saved;
+    for (int t : touched)
+      for (int id : out_.triangles[t]) saved.push_back({id, out_.nodes[id]});
+    const auto restore = [&] {
+      for (const auto& [id, x] : saved) out_.nodes[id] = x;
+    };
+    const auto all_certified = [&](std::vector<double>& scaled) {
+      scaled.clear();
+      for (int t : touched) {
+        const auto cert = certify(t);
+        if (!cert) return false;
+        scaled.push_back(*cert);
+      }
+      return true;
+    };
+    const auto commit = [&](const std::vector<double>& scaled) {
+      for (std::size_t k = 0; k < touched.size(); ++k) scaled_[touched[k]] = scaled[k];
+      for (int v : movable) m.set_position(v, out_.nodes[v]);
+    };
+    std::vector<double> scaled;
+
+    // On the curve, with the centres and the free corners moved.
+    curved_[key] = true;
+    place_on_curve(lo, hi);
+    for (int t : triangles) choose_centre_of(t);
+    for (int v : movable) {
+      const auto star_badness = [&] {
+        double worst = 0;
+        for (int t : m.triangles_of(v)) worst = std::max(worst, badness(t));
+        return worst;
+      };
+      double shortest = std::numeric_limits<double>::infinity();
+      for (int w : m.neighbours(v)) shortest = std::min(shortest, (m.point(w) - m.point(v)).norm());
+      const Vec2 x0 = out_.nodes[v];
+      std::vector<std::pair<int, Vec2>> local;
+      for (int t : m.triangles_of(v))
+        for (int id : out_.triangles[t]) local.push_back({id, out_.nodes[id]});
+      const Vec2 x = compass_search(x0, 0.25 * shortest, [&](const Vec2& p) {
+        for (int t : m.triangles_of(v)) {
+          const auto& tri = m.triangle(t);
+          if (m.orientation_with(tri[0], tri[1], tri[2], v, p) <= 0) return std::numeric_limits<double>::infinity();
+        }
+        place_corner(v, p);
+        const double worst = star_badness();
+        for (const auto& [id, y] : local) out_.nodes[id] = y;
+        return worst;
+      });
+      place_corner(v, x);
+    }
+    for (int t : triangles) choose_centre_of(t);
+    if (all_certified(scaled)) {
+      commit(scaled);
+      return;
+    }
+    restore();
+    curved_[key] = false;
+
+    // The fit: the largest certified blend towards the curve.
+    const auto [first, second] = edge_nodes(lo, hi);
+    const Vec2 straight1 = out_.nodes[first], straight2 = out_.nodes[second];
+    place_on_curve(lo, hi);
+    const Vec2 curve1 = out_.nodes[first], curve2 = out_.nodes[second];
+    const auto blend = [&](double w) {
+      out_.nodes[first] = straight1 + w * (curve1 - straight1);
+      out_.nodes[second] = straight2 + w * (curve2 - straight2);
+      for (int t : triangles) choose_centre_of(t);
+    };
+    double good = 0, bad = 1;
+    std::vector<double> good_scaled;
+    for (int k = 0; k < 12; ++k) {
+      const double w = 0.5 * (good + bad);
+      blend(w);
+      if (all_certified(scaled)) good = w, good_scaled = scaled;
+      else bad = w;
+    }
+    if (good == 0) {
+      restore();
+      return;
+    }
+    blend(good);
+    fitted_.insert(key);
+    commit(good_scaled);
+  }
+
+  int fitted_edge_of(const mesh::Triangle& tri) const {
+    for (int i = 0; i < 3; ++i)
+      if (fitted_.count(mesh::edge_key(tri[i], tri[(i + 1) % 3]))) return i;
+    return -1;
   }
 
   // ----- Steps 2 and 3 ------------------------------------------------------------------------
@@ -542,6 +744,7 @@ class Builder {
   std::unordered_map<std::uint64_t, int> first_node_;
   std::unordered_map<std::uint64_t, bool> curved_;
   std::vector<double> scaled_;  // per triangle: its scaled Jacobian, or −1 if not certified
+  std::unordered_set<std::uint64_t> fitted_;  // primary edges fitted (step 5), not on their curve
 };
 
 }  // namespace

@@ -36,17 +36,20 @@ struct Stats {
   int split_triangles = 0;      // splits made so that every triangle has at most one primary edge
   int primary_edges = 0;        // primary edges of the final mesh
   int curved_edges = 0;         // of those, followed by the cubic map exactly (nodes on the curve)
-  int straight_primary_edges = 0;  // left straight: not certifiable curved yet, or off the curve
+  int fitted_edges = 0;         // bent towards the curve as far as certified (step 5), not on it
+  int straight_primary_edges = 0;  // left straight: off the curve, or no bend certified at all
   int curved_triangles = 0;     // triangles with a curved edge
   int alternative_centres = 0;  // curved triangles certified with another centre than the paper's
   double min_scaled_jacobian = 1;  // over curved triangles (geometry::JacobianCertificate)
   int invalid_triangles = 0;    // triangles whose map is not certified (0 in a mesh that is written)
-  double max_distance = 0;      // largest distance from a straight primary edge to its curve
+  double max_distance = 0;      // largest distance from a fitted or straight primary edge to its curve
+  double mean_fit_distance = 0;  // mean distance from a fitted edge to its curve
   // Quality of the curved mesh: the conformal AMIPS energy of each triangle's map, its largest
   // value over the triangle (geometry::p3_max_amips); the largest and the mean over triangles.
   double max_amips = 0, mean_amips = 0;
   double max_amips_before_smoothing = 0;  // the same before step 4
   int smoothing_moves = 0;                // corner and centre moves step 4 kept
+  int late_projections = 0;               // primary vertices brought onto their curve only now
   double seconds = 0;
 };
 
