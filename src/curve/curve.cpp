@@ -226,6 +226,31 @@ class Builder {
     }
   }
 
+  // The nodes of some triangles, to put back when a move is refused.
+  using Snapshot = std::vector<std::pair<int, Vec2>>;
+  Snapshot snapshot(const std::vector<int>& triangles) const {
+    Snapshot saved;
+    for (int t : triangles)
+      for (int id : out_.triangles[t]) saved.push_back({id, out_.nodes[id]});
+    return saved;
+  }
+  void restore(const Snapshot& saved) {
+    for (const auto& [id, x] : saved) out_.nodes[id] = x;
+  }
+
+  // Certifies every one of `triangles`; only if all are certified, records their scaled
+  // Jacobians and returns true.
+  bool certify_all(const std::vector<int>& triangles) {
+    std::vector<double> scaled;
+    for (int t : triangles) {
+      const auto cert = certify(t);
+      if (!cert) return false;
+      scaled.push_back(*cert);
+    }
+    for (std::size_t k = 0; k < triangles.size(); ++k) scaled_[triangles[k]] = scaled[k];
+    return true;
+  }
+
   // Compass search: from x0 with the first step h, in 8 directions, halving h when none lowers
   // `objective`; returns the best point found.
   template <class Objective>
@@ -323,12 +348,10 @@ class Builder {
       for (int t : star) e = std::max(e, energy(t));
       return e;
     };
-    std::vector<std::pair<int, Vec2>> saved;
-    for (int t : star)
-      for (int id : out_.triangles[t]) saved.push_back({id, out_.nodes[id]});
+    const Snapshot saved = snapshot(star);
     const mesh::EdgeFeature fx = *m.feature(v, n.x), fy = *m.feature(v, n.y);
-    const auto restore = [&] {
-      for (const auto& [id, x] : saved) out_.nodes[id] = x;
+    const auto undo = [&] {
+      restore(saved);
       m.set_tag(v, tag0);
       m.set_feature(v, n.x, fx);
       m.set_feature(v, n.y, fy);
@@ -344,7 +367,7 @@ class Builder {
       }
       place_on_curve_at(v, n, t);
       const double e = star_energy();
-      restore();
+      undo();
       return e;
     };
     const double before = star_energy();
@@ -357,17 +380,11 @@ class Builder {
     }
     if (t == tag0.t || !(best < before)) return 0;
     place_on_curve_at(v, n, t);
-    std::vector<double> certified;
-    for (int s : star) {
-      const auto cert = certify(s);
-      if (!cert) {
-        restore();
-        return 0;
-      }
-      certified.push_back(*cert);
+    if (!certify_all(star)) {
+      undo();
+      return 0;
     }
     m.set_position(v, out_.nodes[v]);
-    for (std::size_t k = 0; k < star.size(); ++k) scaled_[star[k]] = certified[k];
     return 1;
   }
 
@@ -390,30 +407,22 @@ class Builder {
       const auto& tri = m.triangle(s);
       if (m.orientation_with(tri[0], tri[1], tri[2], v, p) <= 0) return 0;
     }
-    std::vector<std::pair<int, Vec2>> saved;
-    for (int s : star)
-      for (int id : out_.triangles[s]) saved.push_back({id, out_.nodes[id]});
+    const Snapshot saved = snapshot(star);
     const mesh::EdgeFeature fx = *m.feature(v, n.x), fy = *m.feature(v, n.y);
     mesh::VertexTag tag = tag0;
     tag.on_curve = true;
     m.set_tag(v, tag);
     for (int w : {n.x, n.y}) curved_[mesh::edge_key(v, w)] = followable(m, v, w);
     place_on_curve_at(v, n, t);
-    std::vector<double> certified;
-    for (int s : star) {
-      const auto cert = certify(s);
-      if (!cert) {
-        for (const auto& [id, x] : saved) out_.nodes[id] = x;
-        m.set_tag(v, tag0);
-        m.set_feature(v, n.x, fx);
-        m.set_feature(v, n.y, fy);
-        for (int w : {n.x, n.y}) curved_[mesh::edge_key(v, w)] = false;
-        return 0;
-      }
-      certified.push_back(*cert);
+    if (!certify_all(star)) {
+      restore(saved);
+      m.set_tag(v, tag0);
+      m.set_feature(v, n.x, fx);
+      m.set_feature(v, n.y, fy);
+      for (int w : {n.x, n.y}) curved_[mesh::edge_key(v, w)] = false;
+      return 0;
     }
     m.set_position(v, p);
-    for (std::size_t k = 0; k < star.size(); ++k) scaled_[star[k]] = certified[k];
     return 1;
   }
 
@@ -425,13 +434,7 @@ class Builder {
       for (int t : star) e = std::max(e, energy(t));
       return e;
     };
-    // Everything the move can change, to restore on rejection.
-    std::vector<std::pair<int, Vec2>> saved;
-    for (int t : star)
-      for (int id : out_.triangles[t]) saved.push_back({id, out_.nodes[id]});
-    const auto restore = [&] {
-      for (const auto& [id, x] : saved) out_.nodes[id] = x;
-    };
+    const Snapshot saved = snapshot(star);  // everything the move can change
     const Vec2 x0 = m.point(v);
     const double before = star_energy();
     double shortest = std::numeric_limits<double>::infinity();
@@ -443,23 +446,17 @@ class Builder {
       }
       place_corner(v, p);
       const double e = star_energy();
-      restore();
+      restore(saved);
       return e;
     };
     const Vec2 x = compass_search(x0, 0.25 * shortest, objective);
     if (x == x0 || !(objective(x) < before)) return 0;
     place_corner(v, x);
-    std::vector<double> certified;
-    for (int t : star) {
-      const auto cert = certify(t);
-      if (!cert) {
-        restore();
-        return 0;
-      }
-      certified.push_back(*cert);
+    if (!certify_all(star)) {
+      restore(saved);
+      return 0;
     }
     m.set_position(v, x);
-    for (std::size_t k = 0; k < star.size(); ++k) scaled_[star[k]] = certified[k];
     return 1;
   }
 
@@ -545,26 +542,13 @@ class Builder {
         }
     std::sort(touched.begin(), touched.end());
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-    std::vector<std::pair<int, Vec2>> saved;
-    for (int t : touched)
-      for (int id : out_.triangles[t]) saved.push_back({id, out_.nodes[id]});
-    const auto restore = [&] {
-      for (const auto& [id, x] : saved) out_.nodes[id] = x;
+    const Snapshot saved = snapshot(touched);
+    std::vector<Vec2> positions;
+    for (int v : movable) positions.push_back(m.point(v));
+    const auto undo = [&] {
+      restore(saved);
+      for (std::size_t k = 0; k < movable.size(); ++k) m.set_position(movable[k], positions[k]);
     };
-    const auto all_certified = [&](std::vector<double>& scaled) {
-      scaled.clear();
-      for (int t : touched) {
-        const auto cert = certify(t);
-        if (!cert) return false;
-        scaled.push_back(*cert);
-      }
-      return true;
-    };
-    const auto commit = [&](const std::vector<double>& scaled) {
-      for (std::size_t k = 0; k < touched.size(); ++k) scaled_[touched[k]] = scaled[k];
-      for (int v : movable) m.set_position(v, out_.nodes[v]);
-    };
-    std::vector<double> scaled;
 
     // On the curve, with the centres and the free corners moved.
     curved_[key] = true;
@@ -578,28 +562,23 @@ class Builder {
       };
       double shortest = std::numeric_limits<double>::infinity();
       for (int w : m.neighbours(v)) shortest = std::min(shortest, (m.point(w) - m.point(v)).norm());
-      const Vec2 x0 = out_.nodes[v];
-      std::vector<std::pair<int, Vec2>> local;
-      for (int t : m.triangles_of(v))
-        for (int id : out_.triangles[t]) local.push_back({id, out_.nodes[id]});
-      const Vec2 x = compass_search(x0, 0.25 * shortest, [&](const Vec2& p) {
+      const Snapshot local = snapshot(m.triangles_of(v));
+      const Vec2 x = compass_search(out_.nodes[v], 0.25 * shortest, [&](const Vec2& p) {
         for (int t : m.triangles_of(v)) {
           const auto& tri = m.triangle(t);
           if (m.orientation_with(tri[0], tri[1], tri[2], v, p) <= 0) return std::numeric_limits<double>::infinity();
         }
         place_corner(v, p);
         const double worst = star_badness();
-        for (const auto& [id, y] : local) out_.nodes[id] = y;
+        restore(local);
         return worst;
       });
       place_corner(v, x);
+      m.set_position(v, x);  // the next corner's orientation checks see this one where it is now
     }
     for (int t : triangles) choose_centre_of(t);
-    if (all_certified(scaled)) {
-      commit(scaled);
-      return;
-    }
-    restore();
+    if (certify_all(touched)) return;
+    undo();
     curved_[key] = false;
 
     // The fit: the largest certified blend towards the curve.
@@ -612,21 +591,19 @@ class Builder {
       out_.nodes[second] = straight2 + w * (curve2 - straight2);
       for (int t : triangles) choose_centre_of(t);
     };
+    // certify_all records the scaled Jacobians of each certified blend: the last one is `good`.
     double good = 0, bad = 1;
-    std::vector<double> good_scaled;
     for (int k = 0; k < 12; ++k) {
       const double w = 0.5 * (good + bad);
       blend(w);
-      if (all_certified(scaled)) good = w, good_scaled = scaled;
-      else bad = w;
+      (certify_all(touched) ? good : bad) = w;
     }
     if (good == 0) {
-      restore();
+      undo();
       return;
     }
     blend(good);
     fitted_.insert(key);
-    commit(good_scaled);
   }
 
   int fitted_edge_of(const mesh::Triangle& tri) const {
