@@ -145,11 +145,11 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
   std::vector<double> size = initial_sizes(m, target, o.pinned_size_factor, o.gradation);  // the sizing field, per vertex
   const auto edge_target = [&](int a, int b) { return 0.5 * (size[a] + size[b]); };
   double best_max = s.initial.max_amips;
-  int stalled = 0, fruitless_refinements = 0;
+  int fruitless_refinements = 0;
   long previous_changes = std::numeric_limits<long>::max();
 
   for (; s.iterations < o.max_iterations; ++s.iterations) {
-    long changes = 0;  // splits and collapses: the sizing work done in this iteration  // splits and collapses: the sizing work left
+    long changes = 0;  // splits and collapses: the sizing work done in this iteration
     // Split long edges, longest first.
     {
       auto edges = all_edges(m);
@@ -248,11 +248,10 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
     }
     if (q.max_amips < best_max * (1 - 1e-2)) {
       best_max = q.max_amips;
-      stalled = 0;
       fruitless_refinements = 0;
-    } else if (!good && ++stalled >= 1) {
-      // Adaptive sizing (TetWild): refine around the worst triangles when quality stalls, and
-      // give up when refining twice in a row brought nothing.
+    } else if (!good) {
+      // Adaptive sizing (TetWild): refine around the worst triangles on the first pass that does
+      // not lower the worst energy, and give up when refining twice in a row brought nothing.
       if (++fruitless_refinements > 2) {
         s.stop_reason = "no improvement";
         ++s.iterations;
@@ -264,7 +263,6 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
         for (int v : tri) size[v] = std::max(smallest, 0.5 * size[v]);
       }
       grade(m, size, o.gradation);
-      stalled = 0;
     }
   }
   if (s.stop_reason.empty()) s.stop_reason = "iteration limit";
