@@ -525,8 +525,9 @@ class Builder {
   // curve. First the edge is put on its curve and the centre nodes and the free opposite corners
   // move (compass search on badness) until both triangles are certified; failing that, the edge's
   // two inner nodes are fitted: the largest blend s·(curve) + (1 − s)·(chord) with both triangles
-  // certified, s by bisection (the least-squares fit to the curve along the one direction in which
-  // the straight edge is known to be valid). The remaining distance is recorded in the stats.
+  // certified and within the stop energy (or the straight edge's), s by bisection (the
+  // least-squares fit to the curve along the one direction in which the straight edge is known to
+  // be valid). The remaining distance is recorded in the stats.
   void fit(int a, int b) {
     TriMesh& m = out_.linear;
     const auto key = mesh::edge_key(a, b);
@@ -581,7 +582,16 @@ class Builder {
     undo();
     curved_[key] = false;
 
-    // The fit: the largest certified blend towards the curve.
+    // The fit: the largest blend towards the curve with both triangles certified and no worse
+    // than the stop energy or the straight edge's (the bare validity limit would leave an element
+    // next to degenerate there).
+    double allowed = o_.stop_amips;
+    for (int t : triangles) allowed = std::max(allowed, energy(t));
+    const auto acceptable = [&] {
+      for (int t : triangles)
+        if (!(energy(t) <= allowed)) return false;
+      return certify_all(touched);
+    };
     const auto [first, second] = edge_nodes(lo, hi);
     const Vec2 straight1 = out_.nodes[first], straight2 = out_.nodes[second];
     place_on_curve(lo, hi);
@@ -591,12 +601,12 @@ class Builder {
       out_.nodes[second] = straight2 + w * (curve2 - straight2);
       for (int t : triangles) choose_centre_of(t);
     };
-    // certify_all records the scaled Jacobians of each certified blend: the last one is `good`.
+    // certify_all records the scaled Jacobians of each accepted blend: the last one is `good`.
     double good = 0, bad = 1;
     for (int k = 0; k < 12; ++k) {
       const double w = 0.5 * (good + bad);
       blend(w);
-      (certify_all(touched) ? good : bad) = w;
+      (acceptable() ? good : bad) = w;
     }
     if (good == 0) {
       undo();
