@@ -16,5 +16,7 @@ using Runner = std::function<int()>;
 Runner add_features_command(CLI::App& app);
 Runner add_mesh_command(CLI::App& app);
 Runner add_check_command(CLI::App& app);
+Runner add_batch_command(CLI::App& app);
+Runner add_report_command(CLI::App& app);
 
 }  // namespace curvemesh::app

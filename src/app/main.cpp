@@ -18,6 +18,8 @@ int main(int argc, char** argv) {
   add(add_features_command(app));
   add(add_mesh_command(app));
   add(add_check_command(app));
+  add(add_batch_command(app));
+  add(add_report_command(app));
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,1003 @@
+// `curvemesh batch`: many drawings, each meshed by a child process of its own (`curvemesh mesh`,
+// then `curvemesh check` on the result), so that a crash, a hang or a runaway allocation costs
+// that drawing only, never the run. Resumable (finished drawings are skipped), shardable over
+// machines, with one JSON line per drawing in a report that `curvemesh report` summarizes.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "app/commands.hpp"
+#include "app/feature_options.hpp"
+#include "features/options.hpp"
+#include "io/output_file.hpp"
+#include "optimize/optimize.hpp"
+#include "triangulate/triangulate.hpp"
+
+namespace curvemesh::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+using Json = nlohmann::ordered_json;
+
+// The mesh options a batch passes on to every `curvemesh mesh` child. They are registered with
+// the same checks as `mesh` has, so a bad value is a usage error before any drawing runs, and
+// then forwarded as the user wrote them (the child parses them again, the one source of truth).
+struct MeshForwarding {
+  bool linear = false;
+  int msh_version = 41;
+  features::Options features;
+  optimize::Options optimize;
+  triangulate::Options triangulate;
+  std::vector<const CLI::Option*> options;  // forwarded when given on the command line
+};
+
+struct BatchArgs {
+  std::vector<std::string> inputs;
+  std::string output_dir, report, shard = "1/1";
+  unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
+  double timeout_s = 300, memory_limit_gb = 0;
+  bool force = false;
+  MeshForwarding mesh;
+};
+
+// What failed the batch as a whole (not one drawing), with the exit code to return.
+class BatchError : public std::runtime_error {
+ public:
+  BatchError(int code, const std::string& message) : std::runtime_error(message), code_(code) {}
+  int code() const { return code_; }
+
+ private:
+  int code_;
+};
+
+enum class Status { ok, invalid_input, timeout, out_of_memory, crash, invalid_output, skipped };
+
+const char* status_name(Status s) {
+  switch (s) {
+    case Status::ok:
+      return "ok";
+    case Status::invalid_input:
+      return "invalid-input";
+    case Status::timeout:
+      return "timeout";
+    case Status::out_of_memory:
+      return "out-of-memory";
+    case Status::crash:
+      return "crash";
+    case Status::invalid_output:
+      return "invalid-output";
+    case Status::skipped:
+      return "skipped";
+  }
+  return "crash";
+}
+
+// ---------------------------------------------------------------------------------------------
+// Inputs
+
+struct Drawing {
+  std::string path;   // as given or found (relative stays relative): the report's key and order
+  fs::path relative;  // where its output goes under OUTDIR, before the extension becomes .msh
+  fs::path msh, stats;
+};
+
+bool has_extension(const fs::path& p, std::string_view ext) {
+  std::string e = p.extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+  return e == ext;
+}
+
+// Every *.svg below `root`; outputs mirror the folders below it.
+void add_directory(const fs::path& root, std::vector<Drawing>& out) {
+  std::error_code ec;
+  fs::recursive_directory_iterator it(root, fs::directory_options::skip_permission_denied, ec);
+  for (; !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    std::error_code regular;
+    if (has_extension(it->path(), ".svg") && it->is_regular_file(regular))
+      out.push_back({it->path().lexically_normal().string(), it->path().lexically_relative(root), {}, {}});
+  }
+  if (ec)
+    throw BatchError(kInvalidInput,
+                     "curvemesh: " + root.string() + ": cannot read the folder (" + ec.message() + ")");
+}
+
+// One path per line, '#' starts a comment, relative paths are relative to the list's folder (so a
+// list travels with its drawings). Folders listed are searched like folders given; a listed file
+// that does not exist stays in: it fails as invalid-input and shows up in the report.
+void add_list(const fs::path& list, std::vector<Drawing>& out) {
+  std::ifstream in(list);
+  if (!in)
+    throw BatchError(kInvalidInput,
+                     "curvemesh: " + list.string() + ": cannot read the list (" + std::strerror(errno) + ")");
+  std::string line;
+  while (std::getline(in, line)) {
+    line = line.substr(0, line.find('#'));
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos) continue;
+    line = line.substr(first, line.find_last_not_of(" \t\r") - first + 1);
+    fs::path p(line);
+    if (p.is_relative()) p = list.parent_path() / p;
+    p = p.lexically_normal();
+    std::error_code ec;
+    if (fs::is_directory(p, ec))
+      add_directory(p, out);
+    else
+      out.push_back({p.string(), p.filename(), {}, {}});
+  }
+}
+
+std::vector<Drawing> expand_inputs(const std::vector<std::string>& inputs) {
+  std::vector<Drawing> out;
+  for (const std::string& input : inputs) {
+    const fs::path p = fs::path(input).lexically_normal();
+    std::error_code ec;
+    const fs::file_status st = fs::status(p, ec);
+    if (!fs::exists(st)) throw BatchError(kUsage, "curvemesh: " + input + ": no such file or folder");
+    if (fs::is_directory(st))
+      add_directory(p, out);
+    else if (has_extension(p, ".svg") || has_extension(p, ".poly"))
+      out.push_back({p.string(), p.filename(), {}, {}});
+    else
+      add_list(p, out);
+  }
+  // Sorted by path, one entry per file (the same file reached twice, by any spelling, is meshed
+  // once); the first spelling in sorted order names its output.
+  std::stable_sort(out.begin(), out.end(),
+                   [](const Drawing& a, const Drawing& b) { return a.path < b.path; });
+  std::vector<Drawing> unique;
+  std::set<std::string> seen;
+  for (Drawing& d : out) {
+    std::error_code ec;
+    fs::path key = fs::weakly_canonical(d.path, ec);
+    if (ec) key = fs::absolute(d.path).lexically_normal();
+    if (seen.insert(key.string()).second) unique.push_back(std::move(d));
+  }
+  return unique;
+}
+
+std::uint64_t fnv1a(std::string_view s) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+
+// Output names. One folder's drawings never collide, but two inputs can (a.svg from two folders
+// given as files, x.svg beside x.poly): those get a suffix hashed from their own path, not from
+// their position or the order of the inputs. Names are assigned on the whole sorted list, before
+// sharding, so a resumed or sharded run finds the same files.
+void assign_outputs(std::vector<Drawing>& drawings, const fs::path& output_dir) {
+  const auto msh_name = [](fs::path p) {
+    return p.replace_extension(".msh").lexically_normal().generic_string();
+  };
+  std::map<std::string, int> uses;
+  for (const Drawing& d : drawings) ++uses[msh_name(d.relative)];
+  std::set<std::string> taken;
+  for (std::size_t i = 0; i < drawings.size(); ++i) {
+    Drawing& d = drawings[i];
+    std::string name = msh_name(d.relative);
+    if (uses[name] > 1) {
+      char suffix[24];
+      std::snprintf(suffix, sizeof suffix, "-%08llx",
+                    static_cast<unsigned long long>(fnv1a(d.path) & 0xffffffffull));
+      fs::path r = d.relative;
+      name = msh_name(r.replace_filename(r.stem().string() + suffix));
+    }
+    // A hashed name that meets another drawing's own name is practically impossible; the index
+    // keeps it deterministic all the same.
+    if (!taken.insert(name).second) {
+      name = fs::path(name).replace_extension().generic_string() + "-" + std::to_string(i) + ".msh";
+      taken.insert(name);
+    }
+    d.msh = output_dir / fs::path(name);
+    d.stats = fs::path(d.msh).replace_extension(".json");
+  }
+}
+
+std::optional<std::pair<std::size_t, std::size_t>> parse_shard(const std::string& s) {
+  std::size_t k = 0, n = 0;
+  char slash = 0, extra = 0;
+  if (std::sscanf(s.c_str(), "%zu %c %zu %c", &k, &slash, &n, &extra) != 3 || slash != '/')
+    return std::nullopt;
+  if (s.find_first_not_of("0123456789/ ") != std::string::npos || n < 1 || k < 1 || k > n)
+    return std::nullopt;
+  return std::make_pair(k, n);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Report lines
+
+Json figure(const Json& j, const char* section, const char* key) {
+  if (j.contains(section) && j[section].is_object() && j[section].contains(key)) return j[section][key];
+  return nullptr;
+}
+
+// Rounded to 1/per_unit, as the nearest double (what a reader expects to see printed).
+double rounded(double x, double per_unit) {
+  return std::round(x * per_unit) / per_unit;
+}
+
+// One report line, every key always present: figures a drawing does not have (no mesh, or no
+// curved stage with --linear) are null.
+Json report_line(const Drawing& d, Status status, double seconds, double peak_mb, const Json& stats,
+                 const Json& check_invalid, const std::string& message) {
+  const bool curved = stats.contains("curve");
+  const bool meshed = status == Status::ok || status == Status::skipped || status == Status::invalid_output;
+  Json line;
+  line["path"] = d.path;
+  line["status"] = status_name(status);
+  line["seconds"] = rounded(seconds, 1000);
+  line["peak_mb"] = rounded(peak_mb, 10);
+  line["triangles"] = meshed ? figure(stats, "mesh", "triangles") : Json();
+  line["curved_triangles"] = meshed && curved ? figure(stats, "curve", "curved_triangles") : Json();
+  line["min_angle_deg"] = meshed ? figure(stats, "mesh", "min_angle_deg") : Json();
+  // The curved triangles' own energy when curved: that is the mesh written.
+  line["max_amips"] =
+      meshed ? (curved ? figure(stats, "curve", "max_amips") : figure(stats, "mesh", "max_amips")) : Json();
+  line["fitted_edges"] = meshed && curved ? figure(stats, "curve", "fitted_edges") : Json();
+  line["max_distance_rel"] = meshed && curved ? figure(stats, "curve", "max_distance_rel") : Json();
+  line["mean_fit_distance_rel"] = meshed && curved ? figure(stats, "curve", "mean_fit_distance_rel") : Json();
+  line["check_invalid"] = check_invalid;
+  line["message"] = message;
+  line["output"] = status == Status::ok || status == Status::skipped ? d.msh.string() : "";
+  return line;
+}
+
+// A drawing is finished when its mesh and statistics exist, are newer than the drawing, and the
+// statistics carry the batch's record for the same mesh options. The record is written only after
+// `check` certified the mesh, so a run killed between meshing and certifying is redone, and so is
+// a drawing meshed with other options (a linear mesh must not stand in for a curved one).
+std::optional<Json> finished_stats(const Drawing& d, const Json& mesh_arguments) {
+  std::error_code ec;
+  const auto input_time = fs::last_write_time(d.path, ec);
+  if (ec) return std::nullopt;
+  for (const fs::path& p : {d.msh, d.stats}) {
+    const auto t = fs::last_write_time(p, ec);
+    if (ec || !(t > input_time)) return std::nullopt;
+  }
+  std::ifstream in(d.stats);
+  Json stats = Json::parse(in, nullptr, false);
+  if (stats.is_discarded() || !stats.is_object() || !stats.contains("batch")) return std::nullopt;
+  const Json& record = stats["batch"];
+  if (!record.is_object() || record.value("mesh_arguments", Json()) != mesh_arguments) return std::nullopt;
+  return stats;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Child processes
+
+using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
+
+// A child's stdout or stderr: a temporary file with no name (nothing to clean up, and no pipe
+// that a chatty child could fill while the parent is busy elsewhere).
+File temporary_file() {
+  File f(std::tmpfile(), &std::fclose);
+  if (!f)
+    throw BatchError(kInternal,
+                     std::string("curvemesh: cannot create a temporary file (") + std::strerror(errno) + ")");
+  ::fcntl(::fileno(f.get()), F_SETFD, FD_CLOEXEC);  // other children must not inherit it
+  return f;
+}
+
+// The start of what a child wrote (a runaway warning stream is not worth reading whole).
+std::string read_back(std::FILE* f, std::size_t limit = 1 << 16) {
+  const int fd = ::fileno(f);
+  std::string s(limit, '\0');
+  std::size_t n = 0;
+  if (::lseek(fd, 0, SEEK_SET) < 0) return {};
+  while (n < limit) {
+    const ssize_t r = ::read(fd, s.data() + n, limit - n);
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) break;
+    n += static_cast<std::size_t>(r);
+  }
+  s.resize(n);
+  return s;
+}
+
+struct ChildSetup {
+  sigset_t mask;         // the signal mask the children start with (the caller's original)
+  rlim_t address_space;  // RLIMIT_AS for the child, 0 for none
+};
+
+struct Child {
+  pid_t pid = -1;       // also its process group
+  int start_errno = 0;  // fork or exec failed (pid stays -1)
+  Clock::time_point started;
+  bool killed = false;  // by us, for the time limit
+  File out{nullptr, &std::fclose}, err{nullptr, &std::fclose};
+};
+
+// How a child ended.
+struct Outcome {
+  int wait_status = 0;
+  int start_errno = 0;
+  bool timed_out = false;
+  double seconds = 0, peak_mb = 0;
+  std::string out, err;
+};
+
+Child start_child(const std::vector<std::string>& args, const ChildSetup& setup) {
+  Child c;
+  c.started = Clock::now();
+  c.out = temporary_file();
+  c.err = temporary_file();
+  const int out_fd = ::fileno(c.out.get()), err_fd = ::fileno(c.err.get());
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  rlimit limit{};
+  if (setup.address_space) {
+    ::getrlimit(RLIMIT_AS, &limit);
+    limit.rlim_cur = std::min(setup.address_space, limit.rlim_max);
+  }
+  // The child reports a failed exec through this pipe; a successful exec closes it (CLOEXEC).
+  int report[2];
+  if (::pipe2(report, O_CLOEXEC) != 0) {
+    c.start_errno = errno;
+    return c;
+  }
+  c.started = Clock::now();  // the clock starts here: the temporary files are not the drawing's time
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    c.start_errno = errno;
+    ::close(report[0]);
+    ::close(report[1]);
+    return c;
+  }
+  if (pid == 0) {
+    // Only async-signal-safe calls between fork and exec. A process group of its own, so that
+    // the time limit kills whatever it started too, and the terminal's Ctrl-C reaches the batch
+    // (which then kills its children) rather than each child separately.
+    ::setpgid(0, 0);
+    ::sigprocmask(SIG_SETMASK, &setup.mask, nullptr);
+    const int null = ::open("/dev/null", O_RDONLY);
+    if (null >= 0) ::dup2(null, 0);
+    ::dup2(out_fd, 1);
+    ::dup2(err_fd, 2);
+    if (setup.address_space) ::setrlimit(RLIMIT_AS, &limit);
+    // The very executable this batch runs, even if the file was replaced by a rebuild meanwhile.
+    ::execv("/proc/self/exe", argv.data());
+    const int e = errno;
+    [[maybe_unused]] const ssize_t ignored = ::write(report[1], &e, sizeof e);
+    ::_exit(127);
+  }
+  ::setpgid(pid, pid);  // here too: kill(-pid) must work even before the child ran at all
+  ::close(report[1]);
+  int e = 0;
+  ssize_t n;
+  while ((n = ::read(report[0], &e, sizeof e)) < 0 && errno == EINTR) {
+  }
+  ::close(report[0]);
+  if (n == static_cast<ssize_t>(sizeof e)) {
+    ::waitpid(pid, nullptr, 0);
+    c.start_errno = e;
+    return c;
+  }
+  c.pid = pid;
+  return c;
+}
+
+Outcome outcome_of(Child& c, int wait_status, double peak_mb) {
+  Outcome o;
+  o.wait_status = wait_status;
+  o.start_errno = c.start_errno;
+  o.timed_out = c.killed;
+  o.seconds = std::chrono::duration<double>(Clock::now() - c.started).count();
+  o.peak_mb = peak_mb;
+  if (c.out) o.out = read_back(c.out.get());
+  if (c.err) o.err = read_back(c.err.get());
+  return o;
+}
+
+// The first line that says what went wrong: warnings come before errors and are not the cause.
+std::string first_error_line(const std::string& err) {
+  std::istringstream s(err);
+  std::string line;
+  while (std::getline(s, line)) {
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line.find("warning:") != std::string::npos) continue;
+    return line.substr(first, line.find_last_not_of(" \t\r") - first + 1);
+  }
+  return {};
+}
+
+std::string with_detail(std::string what, const std::string& err) {
+  const std::string line = first_error_line(err);
+  return line.empty() ? what : what + ": " + line;
+}
+
+std::string signal_name(int sig) {
+  switch (sig) {
+    case SIGKILL:
+      return "SIGKILL";
+    case SIGSEGV:
+      return "SIGSEGV";
+    case SIGABRT:
+      return "SIGABRT";
+    case SIGBUS:
+      return "SIGBUS";
+    case SIGFPE:
+      return "SIGFPE";
+    case SIGILL:
+      return "SIGILL";
+    default:
+      return "signal " + std::to_string(sig);
+  }
+}
+
+// What a child's end means for its drawing. `what` names the step ("mesh" or "check").
+std::pair<Status, std::string> classify(const Outcome& o, const std::string& what, double timeout_s,
+                                        double memory_limit_gb) {
+  if (o.start_errno) {
+    const std::string m = "cannot run curvemesh " + what + ": " + std::strerror(o.start_errno);
+    // Under a tight address-space limit even exec can fail for want of memory.
+    const bool memory = memory_limit_gb > 0 && (o.start_errno == ENOMEM || o.start_errno == E2BIG);
+    return {memory ? Status::out_of_memory : Status::crash, m};
+  }
+  if (o.timed_out) {
+    char m[96];
+    std::snprintf(m, sizeof m, "no result within %g s (killed)", timeout_s);
+    return {Status::timeout, what == "check" ? std::string(m) + " while certifying the mesh" : m};
+  }
+  // std::bad_alloc reaches main's catch-all and is reported as an internal error: it is memory.
+  const bool bad_alloc = o.err.find("bad_alloc") != std::string::npos;
+  char limit[64] = "";
+  if (memory_limit_gb > 0) std::snprintf(limit, sizeof limit, " under --memory-limit %g GB", memory_limit_gb);
+  if (WIFSIGNALED(o.wait_status)) {
+    const int sig = WTERMSIG(o.wait_status);
+    const std::string killed = "curvemesh " + what + " killed by " + signal_name(sig);
+    if (bad_alloc) return {Status::out_of_memory, with_detail("out of memory" + std::string(limit), o.err)};
+    // Not our SIGKILL (that is a time-out): the kernel's out-of-memory killer sends it.
+    if (sig == SIGKILL) return {Status::out_of_memory, killed + " (not by the batch: out of memory)"};
+    // Under an address-space limit, a failed allocation outside C++'s new (a thread's stack, the
+    // C library) ends as a segmentation fault or an abort.
+    if (memory_limit_gb > 0 && (sig == SIGSEGV || sig == SIGABRT))
+      return {Status::out_of_memory, killed + limit + " (probably out of memory)"};
+    return {Status::crash, with_detail(killed, o.err)};
+  }
+  const int code = WIFEXITED(o.wait_status) ? WEXITSTATUS(o.wait_status) : -1;
+  if (code == kOk) return {Status::ok, ""};
+  if (bad_alloc) return {Status::out_of_memory, with_detail("out of memory" + std::string(limit), o.err)};
+  if (code == kInvalidInput) {
+    const std::string line = first_error_line(o.err);  // it names the file, line and element
+    return {Status::invalid_input, line.empty() ? "invalid input" : line};
+  }
+  return {Status::crash, with_detail("curvemesh " + what + " exited with " + std::to_string(code), o.err)};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Progress on stderr: one line rewritten in place on a terminal; one line per drawing otherwise
+// (a log file should not fill with carriage returns).
+
+std::string clock_text(double s) {
+  char b[32];
+  const long t = std::lround(s);
+  if (t >= 3600)
+    std::snprintf(b, sizeof b, "%ldh%02ldm", t / 3600, t / 60 % 60);
+  else if (t >= 60)
+    std::snprintf(b, sizeof b, "%ldm%02lds", t / 60, t % 60);
+  else
+    std::snprintf(b, sizeof b, "%.1fs", s);
+  return b;
+}
+
+class Progress {
+ public:
+  Progress(std::size_t total, bool terminal) : total_(total), terminal_(terminal), start_(Clock::now()) {}
+
+  void finished(const Json& line) {
+    const std::string status = line["status"];
+    ++done_;
+    if (status == "ok" || status == "skipped")
+      ++ok_;
+    else
+      ++failed_;
+    if (status != "skipped") ++ran_;
+    if (!terminal_) {
+      char head[96];
+      std::snprintf(head, sizeof head, "[%zu/%zu] %-14s %8.2f s %7.0f MB  ", done_, total_, status.c_str(),
+                    line["seconds"].get<double>(), line["peak_mb"].get<double>());
+      const std::string message = line["message"];
+      std::cerr << head << line["path"].get<std::string>() << (message.empty() ? "" : "  " + message) << "\n";
+      return;
+    }
+    // On a terminal the failures stay readable above the progress line.
+    if (status != "ok" && status != "skipped")
+      std::cerr << "\r\33[K" << status << ": " << line["path"].get<std::string>() << "  "
+                << line["message"].get<std::string>() << "\n";
+    draw();
+  }
+
+  void tick() {
+    if (terminal_ && Clock::now() - drawn_ > std::chrono::milliseconds(200)) draw();
+  }
+
+  void end() {
+    if (terminal_) std::cerr << "\n";
+  }
+
+  double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+
+ private:
+  void draw() {
+    drawn_ = Clock::now();
+    const double t = elapsed();
+    const std::string eta = done_ == total_ ? "0s" : ran_ ? clock_text(t / ran_ * (total_ - done_)) : "?";
+    std::cerr << "\r\33[K[" << done_ << "/" << total_ << "] ok " << ok_ << "  failed " << failed_
+              << "  elapsed " << clock_text(t) << "  ETA " << eta << std::flush;
+  }
+
+  std::size_t total_, done_ = 0, ok_ = 0, failed_ = 0, ran_ = 0;
+  bool terminal_;
+  Clock::time_point start_, drawn_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// The run
+
+// Blocks the signals the batch waits for (children ending, Ctrl-C, kill) and restores the mask
+// on the way out, so waiting is one sigtimedwait instead of a handler writing to a global.
+class BlockedSignals {
+ public:
+  BlockedSignals() {
+    sigemptyset(&set_);
+    for (int s : {SIGCHLD, SIGINT, SIGTERM, SIGHUP}) sigaddset(&set_, s);
+    ::sigprocmask(SIG_BLOCK, &set_, &old_);
+  }
+  ~BlockedSignals() { ::sigprocmask(SIG_SETMASK, &old_, nullptr); }
+  BlockedSignals(const BlockedSignals&) = delete;
+  BlockedSignals& operator=(const BlockedSignals&) = delete;
+  const sigset_t& set() const { return set_; }
+  const sigset_t& old() const { return old_; }
+
+ private:
+  sigset_t set_, old_;
+};
+
+struct Job {
+  std::size_t index = 0;  // into the shard's drawings
+  bool checking = false;  // meshing first, then certifying
+  Clock::time_point deadline;
+  Child child;
+  Outcome mesh;  // the mesh child's outcome, once checking
+};
+
+class Batch {
+ public:
+  Batch(const BatchArgs& args, std::vector<Drawing> drawings, std::vector<std::string> forwarded,
+        const BlockedSignals& signals)
+      : args_(args),
+        drawings_(std::move(drawings)),
+        forwarded_(std::move(forwarded)),
+        signals_(signals),
+        lines_(drawings_.size()),
+        progress_(drawings_.size(), ::isatty(STDERR_FILENO)) {
+    for (const std::string& a : forwarded_) mesh_arguments_.push_back(a);
+    setup_.mask = signals.old();
+    setup_.address_space =
+        args.memory_limit_gb > 0 ? static_cast<rlim_t>(args.memory_limit_gb * 1073741824.0) : 0;
+  }
+
+  // Runs every drawing; returns the signal that interrupted the run, or 0.
+  int run(const fs::path& report_path) {
+    report_path_ = report_path;
+    std::error_code ec;
+    if (report_path.has_parent_path()) fs::create_directories(report_path.parent_path(), ec);
+    report_.open(report_path, std::ios::trunc);
+    if (!report_)
+      throw BatchError(kInvalidInput, "curvemesh: " + report_path.string() + ": cannot write the report");
+
+    std::vector<std::size_t> pending;
+    for (std::size_t i = 0; i < drawings_.size(); ++i) {
+      const Drawing& d = drawings_[i];
+      if (const auto stats = args_.force ? std::optional<Json>() : finished_stats(d, mesh_arguments_)) {
+        const Json& r = (*stats)["batch"];
+        finish(i, report_line(d, Status::skipped, r.value("seconds", 0.0), r.value("peak_mb", 0.0), *stats,
+                              r.value("check_invalid", Json()), ""));
+      } else {
+        pending.push_back(i);
+      }
+    }
+    std::reverse(pending.begin(), pending.end());  // taken from the back, in sorted order
+
+    int interrupted = 0;
+    while (!interrupted && (!pending.empty() || !running_.empty())) {
+      while (running_.size() < args_.jobs && !pending.empty()) {
+        start_mesh(pending.back());
+        pending.pop_back();
+      }
+      reap();
+      enforce_time_limits();
+      interrupted = wait_for_news();
+      progress_.tick();
+    }
+    if (interrupted) kill_all();
+    progress_.end();
+    write_sorted_report();
+    return interrupted;
+  }
+
+  const std::vector<std::optional<Json>>& lines() const { return lines_; }
+  double elapsed() const { return progress_.elapsed(); }
+
+ private:
+  void start_mesh(std::size_t i) {
+    const Drawing& d = drawings_[i];
+    // Redoing a drawing starts from nothing: a failure must not leave an earlier run's mesh behind
+    // to be taken for this run's.
+    std::error_code ec;
+    fs::remove(d.msh, ec);
+    fs::remove(d.stats, ec);
+    if (d.msh.has_parent_path()) fs::create_directories(d.msh.parent_path(), ec);
+    if (ec) {
+      finish(i, report_line(d, Status::crash, 0, 0, Json::object(), nullptr,
+                            "cannot create " + d.msh.parent_path().string() + ": " + ec.message()));
+      return;
+    }
+    std::vector<std::string> argv = {"curvemesh",    "mesh",    d.path,          "-o",
+                                     d.msh.string(), "--stats", d.stats.string()};
+    argv.insert(argv.end(), forwarded_.begin(), forwarded_.end());
+    Job job;
+    job.index = i;
+    job.child = start_child(argv, setup_);
+    job.deadline = job.child.started + std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double>(args_.timeout_s));
+    if (job.child.pid < 0) {
+      const Outcome o = outcome_of(job.child, 0, 0);
+      const auto [status, message] = classify(o, "mesh", args_.timeout_s, args_.memory_limit_gb);
+      finish(i, report_line(d, status, 0, 0, Json::object(), nullptr, message));
+      return;
+    }
+    running_.push_back(std::move(job));
+  }
+
+  // Collects every child that has ended, with its peak resident memory from the kernel.
+  void reap() {
+    int status = 0;
+    rusage usage{};
+    pid_t pid;
+    while ((pid = ::wait4(-1, &status, WNOHANG, &usage)) > 0) {
+      const auto it =
+          std::find_if(running_.begin(), running_.end(), [&](const Job& j) { return j.child.pid == pid; });
+      if (it == running_.end()) continue;
+      Job job = std::move(*it);
+      running_.erase(it);
+      const double peak_mb = usage.ru_maxrss / 1024.0;  // kilobytes on Linux
+      const Outcome o = outcome_of(job.child, status, peak_mb);
+      if (job.checking)
+        after_check(std::move(job), o);
+      else
+        after_mesh(std::move(job), o);
+    }
+  }
+
+  void after_mesh(Job job, const Outcome& o) {
+    const Drawing& d = drawings_[job.index];
+    const auto [status, message] = classify(o, "mesh", args_.timeout_s, args_.memory_limit_gb);
+    if (status != Status::ok) {
+      finish(job.index, report_line(d, status, o.seconds, o.peak_mb, Json::object(), nullptr, message));
+      return;
+    }
+    // Certified by `check` in a child too: an uncertifiable mesh may be expensive or crash the
+    // checker, and the time limit covers both steps.
+    job.mesh = o;
+    job.checking = true;
+    job.child = start_child({"curvemesh", "check", d.msh.string(), "--json"}, setup_);
+    if (job.child.pid < 0) {
+      after_check(std::move(job), outcome_of(job.child, 0, 0));
+      return;
+    }
+    running_.push_back(std::move(job));
+  }
+
+  void after_check(Job job, const Outcome& o) {
+    const Drawing& d = drawings_[job.index];
+    std::ifstream in(d.stats);
+    Json stats = Json::parse(in, nullptr, false);
+    in.close();
+    if (stats.is_discarded() || !stats.is_object()) stats = Json::object();
+    Json verdict = Json::parse(o.out, nullptr, false);
+    const Json check_invalid =
+        verdict.is_object() && verdict.contains("invalid") ? verdict["invalid"] : Json();
+    auto [status, message] = classify(o, "check", args_.timeout_s, args_.memory_limit_gb);
+    if (status == Status::ok && !(check_invalid.is_number() && check_invalid.get<long>() == 0)) {
+      status = Status::invalid_output;
+      message = "curvemesh check printed no verdict";
+    } else if (status == Status::invalid_input || status == Status::crash) {
+      // `check` refused the mesh (exit 1) or could not read it: either way it is not certified.
+      status = Status::invalid_output;
+      message = check_invalid.is_number() && check_invalid.get<long>() > 0
+                    ? "curvemesh check: " + check_invalid.dump() + " invalid elements"
+                    : "curvemesh check: " + message;
+    }
+    if (status == Status::ok) {
+      Json record;
+      record["seconds"] = rounded(job.mesh.seconds, 1000);
+      record["peak_mb"] = rounded(job.mesh.peak_mb, 10);
+      record["check_seconds"] = rounded(o.seconds, 1000);
+      record["check_invalid"] = check_invalid;
+      record["mesh_arguments"] = mesh_arguments_;
+      stats["batch"] = record;
+      try {
+        io::write_file_atomically(d.stats.string(), stats.dump(1) + "\n");
+      } catch (const io::OutputError& e) {
+        status = Status::crash;
+        message = e.what();
+      }
+    }
+    if (status != Status::ok) {
+      // Only certified meshes stay in OUTDIR (as `mesh` writes nothing when it fails), and a
+      // resumed run must redo this drawing rather than skip it.
+      std::error_code ec;
+      fs::remove(d.msh, ec);
+      fs::remove(d.stats, ec);
+    }
+    finish(job.index,
+           report_line(d, status, job.mesh.seconds, job.mesh.peak_mb, stats, check_invalid, message));
+  }
+
+  void enforce_time_limits() {
+    const auto now = Clock::now();
+    for (Job& j : running_)
+      if (!j.child.killed && now >= j.deadline) {
+        ::kill(-j.child.pid, SIGKILL);  // the whole group; the child is reaped as usual
+        j.child.killed = true;
+      }
+  }
+
+  // Sleeps until a child ends, the next deadline passes or 100 ms go by; returns the number of an
+  // interrupting signal (Ctrl-C, SIGTERM, SIGHUP), or 0.
+  int wait_for_news() {
+    if (running_.empty()) return 0;
+    auto wake = Clock::now() + std::chrono::milliseconds(100);
+    for (const Job& j : running_)
+      if (!j.child.killed) wake = std::min(wake, j.deadline);
+    const auto ns = std::max<long long>(
+        0, std::chrono::duration_cast<std::chrono::nanoseconds>(wake - Clock::now()).count());
+    const timespec timeout{static_cast<time_t>(ns / 1000000000), static_cast<long>(ns % 1000000000)};
+    siginfo_t info;
+    const int sig = ::sigtimedwait(&signals_.set(), &info, &timeout);
+    return sig > 0 && sig != SIGCHLD ? sig : 0;
+  }
+
+  void kill_all() {
+    for (Job& j : running_) ::kill(-j.child.pid, SIGKILL);
+    for (Job& j : running_) {
+      ::waitpid(j.child.pid, nullptr, 0);
+      std::error_code ec;
+      fs::remove(drawings_[j.index].msh, ec);
+      fs::remove(drawings_[j.index].stats, ec);
+    }
+    running_.clear();
+  }
+
+  void finish(std::size_t i, Json line) {
+    // Written as they come, so a run that dies still leaves a report; sorted at the end.
+    report_ << line.dump() << "\n" << std::flush;
+    progress_.finished(line);
+    lines_[i] = std::move(line);
+  }
+
+  void write_sorted_report() {
+    report_.close();
+    std::string text;
+    for (const auto& line : lines_)
+      if (line) text += line->dump() + "\n";
+    try {
+      io::write_file_atomically(report_path_.string(), text);
+    } catch (const io::OutputError& e) {
+      throw BatchError(kInvalidInput, std::string("curvemesh: ") + e.what());
+    }
+  }
+
+  const BatchArgs& args_;
+  std::vector<Drawing> drawings_;
+  std::vector<std::string> forwarded_;
+  Json mesh_arguments_ = Json::array();
+  const BlockedSignals& signals_;
+  ChildSetup setup_{};
+  std::vector<std::optional<Json>> lines_;
+  std::vector<Job> running_;
+  Progress progress_;
+  fs::path report_path_;
+  std::ofstream report_;
+};
+
+// The mesh options as the user gave them, to pass on to each child.
+std::vector<std::string> forwarded_arguments(const MeshForwarding& m) {
+  std::vector<std::string> out;
+  if (m.linear) out.push_back("--linear");
+  for (const CLI::Option* o : m.options)
+    if (o->count() > 0 && !o->results().empty()) {
+      out.push_back(o->get_name());
+      out.push_back(o->results().back());
+    }
+  return out;
+}
+
+int run_batch(const BatchArgs& args) {
+  if (!feature_options_valid(args.mesh.features)) return kUsage;
+  const auto shard = parse_shard(args.shard);
+  if (!shard) {
+    std::cerr << "curvemesh: --shard wants K/N with 1 <= K <= N, not '" << args.shard << "'\n";
+    return kUsage;
+  }
+  try {
+    std::vector<Drawing> all = expand_inputs(args.inputs);
+    const fs::path output_dir = fs::path(args.output_dir);
+    assign_outputs(all, output_dir);
+    const std::size_t total = all.size();
+    // Every N-th drawing of the whole sorted list, so the shards' reports add up to the whole.
+    std::vector<Drawing> mine;
+    for (std::size_t i = 0; i < all.size(); ++i)
+      if (i % shard->second == shard->first - 1) mine.push_back(std::move(all[i]));
+    if (total == 0) std::cerr << "curvemesh: warning: no drawings in the inputs\n";
+
+    std::error_code ec;
+    fs::create_directories(output_dir, ec);
+    if (ec)
+      throw BatchError(kInvalidInput,
+                       "curvemesh: " + output_dir.string() + ": cannot create (" + ec.message() + ")");
+    // Shards may share OUTDIR; by default each writes a report of its own.
+    fs::path report_path = args.report;
+    if (report_path.empty())
+      report_path = output_dir / (shard->second == 1 ? std::string("report.jsonl")
+                                                     : "report-" + std::to_string(shard->first) + "-of-" +
+                                                           std::to_string(shard->second) + ".jsonl");
+
+    const BlockedSignals signals;
+    Batch batch(args, std::move(mine), forwarded_arguments(args.mesh), signals);
+    const int interrupted = batch.run(report_path);
+
+    std::map<std::string, int> counts;
+    std::size_t done = 0, failed = 0;
+    for (const auto& line : batch.lines())
+      if (line) {
+        ++done;
+        const std::string s = (*line)["status"];
+        ++counts[s];
+        failed += s != "ok" && s != "skipped";
+      }
+    std::ostringstream summary;
+    summary << "curvemesh batch: " << done;
+    if (done < batch.lines().size()) summary << " of " << batch.lines().size();
+    summary << " drawings";
+    if (shard->second > 1) summary << " (shard " << args.shard << " of " << total << ")";
+    summary << ": ok " << counts["ok"] << ", skipped " << counts["skipped"] << ", failed " << failed;
+    std::string sep = " (";
+    for (const auto& [s, n] : counts)
+      if (s != "ok" && s != "skipped" && n > 0) {
+        summary << sep << s << " " << n;
+        sep = ", ";
+      }
+    if (sep == ", ") summary << ")";
+    summary << "; " << clock_text(batch.elapsed()) << "; report " << report_path.string();
+    std::cerr << summary.str() << "\n";
+    if (interrupted) {
+      std::cerr << "curvemesh: interrupted; the report lists the drawings that finished\n";
+      // Die of the same signal, as a shell expects of an interrupted program.
+      ::signal(interrupted, SIG_DFL);
+      sigset_t one;
+      sigemptyset(&one);
+      sigaddset(&one, interrupted);
+      ::sigprocmask(SIG_UNBLOCK, &one, nullptr);
+      ::raise(interrupted);
+      return kInvalidInput;
+    }
+    return failed ? kInvalidInput : kOk;
+  } catch (const BatchError& e) {
+    std::cerr << e.what() << "\n";
+    return e.code();
+  }
+}
+
+// The `mesh` options worth setting for a corpus, with the checks and defaults `mesh` has.
+void add_forwarded_mesh_options(CLI::App& cmd, MeshForwarding& m) {
+  cmd.add_flag("--linear", m.linear,
+               "mesh: make linear meshes (straight 3-node triangles) instead of curved ones");
+  const std::size_t first = cmd.get_options().size();
+  cmd.add_option("--msh-version", m.msh_version, "mesh: Gmsh file format, 4.1 or 2.2")
+      ->capture_default_str()
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, int>{{"4.1", 41}, {"41", 41}, {"2.2", 22}, {"22", 22}}));
+  add_feature_options(cmd, m.features);
+  cmd.add_option("--max-iterations", m.optimize.max_iterations, "mesh: optimization passes at most")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd.add_option("--stop-amips", m.optimize.stop_max_amips,
+                 "mesh: optimization stops once every triangle's AMIPS energy is at most this")
+      ->capture_default_str()
+      ->check(CLI::Range(2.0, 1e9));
+  cmd.add_option("--box-margin", m.triangulate.box_margin_rel,
+                 "mesh: the meshed box extends the drawing's bounding box by this, relative to d")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-3, 10.0));
+  const auto all = cmd.get_options();
+  m.options.assign(all.begin() + static_cast<std::ptrdiff_t>(first), all.end());
+}
+
+}  // namespace
+
+Runner add_batch_command(CLI::App& app) {
+  auto args = std::make_shared<BatchArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "batch",
+      "Mesh many drawings, each in a child process of its own (`curvemesh mesh`, then `curvemesh check "
+      "--json` on the result), N at a time, so that a crash, a hang or running out of memory costs that "
+      "drawing only. Outputs mirror the inputs under OUTDIR (X.msh and the statistics X.json). Finished "
+      "drawings are skipped when run again. Writes one JSON line per drawing, in sorted order, to the "
+      "report (summarize it with `curvemesh report`); progress goes to stderr. Exit 0 when every "
+      "drawing is ok or skipped, 1 when any failed, 2 on a usage error.");
+  cmd->add_option("inputs", args->inputs,
+                  "drawings to mesh: SVG or .poly files, folders (every *.svg below them, outputs mirroring "
+                  "their folders), or list files (any other file: one path per line, '#' starts a comment, "
+                  "relative paths are relative to the list's folder). The list is sorted by path and each "
+                  "file is meshed once")
+      ->required();
+  cmd->add_option("-o,--output-dir", args->output_dir,
+                  "folder for the meshes and their statistics: a folder input's drawings keep their path "
+                  "below that folder, files keep their name; names that would collide get a suffix hashed "
+                  "from the drawing's path")
+      ->required();
+  cmd->add_option("-j,--jobs", args->jobs, "drawings meshed at the same time (default: the hardware threads)")
+      ->capture_default_str()
+      ->check(CLI::Range(1u, 4096u));
+  cmd->add_option("--timeout", args->timeout_s,
+                  "seconds per drawing, meshing and certifying together; then its process group is killed "
+                  "(status timeout)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--memory-limit", args->memory_limit_gb,
+                  "address space per child in GB (2^30 bytes; setrlimit RLIMIT_AS); a child that runs out "
+                  "has status out-of-memory (default: no limit)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option(
+      "--report", args->report,
+      "the JSON Lines report: one object per drawing with path, status (ok, invalid-input, timeout, "
+      "out-of-memory, crash, invalid-output, skipped), seconds, peak_mb, triangles, "
+      "curved_triangles, min_angle_deg, max_amips, fitted_edges, max_distance_rel, "
+      "mean_fit_distance_rel, check_invalid, message, output (default: OUTDIR/report.jsonl, "
+      "OUTDIR/report-K-of-N.jsonl with --shard)");
+  cmd->add_flag("--force", args->force,
+                "mesh every drawing again; without it a drawing whose mesh and statistics are newer than "
+                "the drawing, certified and made with the same mesh options, is skipped (status skipped, "
+                "its figures read back from the statistics)");
+  cmd->add_option("--shard", args->shard,
+                  "K/N: mesh only the drawings whose index i in the sorted list has i % N == K-1 (K from 1), "
+                  "to split a corpus over N runs whose reports add up to the whole")
+      ->capture_default_str();
+  add_forwarded_mesh_options(*cmd, args->mesh);
+  cmd->footer(
+      "The options from --linear on are passed on to each `curvemesh mesh` as given; see "
+      "`curvemesh mesh --help`.");
+  return [args] { return run_batch(*args); };
+}
+
+}  // namespace curvemesh::app

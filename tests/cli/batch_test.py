@@ -1,0 +1,295 @@
+#!/usr/bin/env python3
+"""Command-line contract of `curvemesh batch` and `curvemesh report`: the examples plus a malformed
+drawing (invalid-input, the others ok, exit 1), a time-out, a memory limit that is too small, a
+resumed run (skips, mtimes unchanged) and --force, shards that add up to the whole, list files,
+output names that would collide, forwarded mesh options, the report's schema, `curvemesh report`
+and its self-contained HTML page, usage errors and --help.
+
+usage: batch_test.py CURVEMESH_BINARY EXAMPLES_DIR
+"""
+import glob
+import json
+import os
+import random
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+binary, examples = sys.argv[1], sys.argv[2]
+failures = []
+passed = 0
+tmp = tempfile.TemporaryDirectory()
+root = tmp.name
+
+
+def check(name, condition, detail=""):
+    global passed
+    if condition:
+        passed += 1
+    else:
+        failures.append(f"{name}: {detail}")
+        print(f"FAIL {name}: {detail}")
+
+
+def run(*args, timeout=120):
+    start = time.monotonic()
+    r = subprocess.run([binary, *args], capture_output=True, text=True, timeout=timeout)
+    return r, time.monotonic() - start
+
+
+def read_report(path):
+    try:
+        with open(path) as f:
+            return [json.loads(line) for line in f if line.strip()]
+    except (OSError, json.JSONDecodeError) as e:
+        check(f"{path}: readable JSON Lines", False, str(e))
+        return []
+
+
+def by_path(lines):
+    return {l["path"]: l for l in lines}
+
+
+def write(path, text):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+SVG = '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">{}</svg>'
+example_names = sorted(n for n in os.listdir(examples) if n.endswith(".svg"))
+
+# The report's schema: every key on every line, with its JSON type (figures are null where a
+# drawing has none: no mesh, or no curved stage).
+NUMBER, INT, STR = (int, float), int, str
+SCHEMA = {"path": (STR,), "status": (STR,), "seconds": NUMBER, "peak_mb": NUMBER,
+          "triangles": (INT, type(None)), "curved_triangles": (INT, type(None)),
+          "min_angle_deg": NUMBER + (type(None),), "max_amips": NUMBER + (type(None),),
+          "fitted_edges": (INT, type(None)), "max_distance_rel": NUMBER + (type(None),),
+          "mean_fit_distance_rel": NUMBER + (type(None),), "check_invalid": (INT, type(None)),
+          "message": (STR,)}
+STATUSES = {"ok", "invalid-input", "timeout", "out-of-memory", "crash", "invalid-output", "skipped"}
+
+
+def check_schema(name, lines):
+    for l in lines:
+        for key, types in SCHEMA.items():
+            value = l.get(key, KeyError)
+            ok = key in l and isinstance(value, types) and not (isinstance(value, bool))
+            check(f"{name}: {l.get('path')}: '{key}' present with the right type", ok, f"{key}={value!r}")
+        check(f"{name}: {l.get('path')}: known status", l.get("status") in STATUSES, l.get("status"))
+
+
+# --- The examples plus a malformed drawing, curved (the default) -------------------------------
+inputs = os.path.join(root, "in")
+for n in example_names:
+    os.makedirs(inputs, exist_ok=True)
+    shutil.copy(os.path.join(examples, n), os.path.join(inputs, n))
+malformed = write(os.path.join(inputs, "sub", "malformed.svg"), SVG.format('<path d="M 10 10 L 20 x"/>'))
+out = os.path.join(root, "out")
+r, _ = run("batch", inputs, "-o", out, "--jobs", "2")
+check("main run: exit 1 (one drawing failed)", r.returncode == 1, f"exit {r.returncode}: {r.stderr}")
+report = read_report(os.path.join(out, "report.jsonl"))
+expected_paths = sorted([os.path.join(inputs, n) for n in example_names] + [malformed])
+check("main run: one line per drawing, in sorted order", [l["path"] for l in report] == expected_paths,
+      [l.get("path") for l in report])
+check_schema("main run", report)
+first = by_path(report)
+for n in example_names:
+    l = first.get(os.path.join(inputs, n), {})
+    check(f"main run: {n} ok", l.get("status") == "ok", l)
+    msh = os.path.join(out, n[:-4] + ".msh")
+    check(f"main run: {n}: mesh written under OUTDIR with the same name", os.path.exists(msh), msh)
+    check(f"main run: {n}: certified by check (check_invalid 0)", l.get("check_invalid") == 0, l.get("check_invalid"))
+    check(f"main run: {n}: curved figures present",
+          all(isinstance(l.get(k), (int, float)) for k in ("curved_triangles", "max_distance_rel", "fitted_edges"))
+          and (l.get("curved_triangles") or 0) > 0, l)
+    check(f"main run: {n}: time and peak memory measured",
+          0 < l.get("seconds", 0) < 60 and 1 < l.get("peak_mb", 0) < 4000, (l.get("seconds"), l.get("peak_mb")))
+    stats_path = os.path.join(out, n[:-4] + ".json")
+    try:
+        with open(stats_path) as f:
+            stats = json.load(f)
+        check(f"main run: {n}: triangles as in the statistics", stats["mesh"]["triangles"] == l.get("triangles"),
+              (stats["mesh"]["triangles"], l.get("triangles")))
+        check(f"main run: {n}: max AMIPS is the curved one", stats["curve"]["max_amips"] == l.get("max_amips"),
+              (stats["curve"]["max_amips"], l.get("max_amips")))
+    except (OSError, KeyError, json.JSONDecodeError) as e:
+        check(f"main run: {n}: statistics readable", False, str(e))
+bad = first.get(malformed, {})
+check("main run: malformed drawing is invalid-input", bad.get("status") == "invalid-input", bad)
+check("main run: its message names the file", "malformed.svg" in bad.get("message", ""), bad.get("message"))
+check("main run: no mesh for it", not os.path.exists(os.path.join(out, "sub", "malformed.msh")))
+progress = [l for l in r.stderr.splitlines() if l.startswith("[")]
+check("main run: one progress line per drawing when stderr is not a terminal", len(progress) == len(expected_paths),
+      r.stderr)
+
+# --- Resumed run: everything finished is skipped, nothing rewritten; --force redoes it ----------
+outputs = sorted(glob.glob(os.path.join(out, "*.msh")) + glob.glob(os.path.join(out, "*.json")))
+mtimes = {p: os.stat(p).st_mtime_ns for p in outputs}
+r, _ = run("batch", inputs, "-o", out, "--jobs", "2")
+check("resume: exit 1 (the malformed drawing fails again)", r.returncode == 1, f"exit {r.returncode}: {r.stderr}")
+second = by_path(read_report(os.path.join(out, "report.jsonl")))
+check_schema("resume", list(second.values()))
+for n in example_names:
+    p = os.path.join(inputs, n)
+    l = second.get(p, {})
+    check(f"resume: {n} skipped", l.get("status") == "skipped", l)
+    check(f"resume: {n}: figures read back",
+          all(l.get(k) == first.get(p, {}).get(k) for k in ("triangles", "curved_triangles", "max_amips", "seconds",
+                                                           "peak_mb", "check_invalid")), (l, first.get(p)))
+check("resume: malformed drawing is tried again", second.get(malformed, {}).get("status") == "invalid-input")
+check("resume: no output rewritten", {p: os.stat(p).st_mtime_ns for p in outputs} == mtimes)
+r, _ = run("batch", inputs, "-o", out, "--jobs", "2", "--force")
+forced = by_path(read_report(os.path.join(out, "report.jsonl")))
+check("force: every example meshed again",
+      all(forced.get(os.path.join(inputs, n), {}).get("status") == "ok" for n in example_names), forced)
+check("force: meshes rewritten",
+      all(os.stat(p).st_mtime_ns > mtimes[p] for p in outputs if p.endswith(".msh")), outputs)
+# Other mesh options make the earlier meshes stale: not skipped.
+r, _ = run("batch", os.path.join(inputs, example_names[0]), "-o", out, "--linear", "--report",
+          os.path.join(root, "relinear.jsonl"))
+l = read_report(os.path.join(root, "relinear.jsonl"))
+check("options changed: redone, not skipped", [x.get("status") for x in l] == ["ok"], l)
+check("options changed: --linear forwarded (no curved figures)", l and l[0].get("curved_triangles") is None, l)
+
+# --- A drawing that takes too long: killed at the time limit ------------------------------------
+rng = random.Random(7)
+paths = []
+for _ in range(3000):
+    p = [f"{rng.uniform(0, 1000):.3f}" for _ in range(8)]
+    paths.append(f'<path d="M {p[0]} {p[1]} C {p[2]} {p[3]} {p[4]} {p[5]} {p[6]} {p[7]}" fill="none" stroke="black"/>')
+heavy = write(os.path.join(root, "heavy", "heavy.svg"),
+              '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 1000 1000">' + "".join(paths) + "</svg>")
+r, wall = run("batch", heavy, "-o", os.path.join(root, "out-timeout"), "--timeout", "0.3")
+l = read_report(os.path.join(root, "out-timeout", "report.jsonl"))
+check("timeout: exit 1", r.returncode == 1, f"exit {r.returncode}: {r.stderr}")
+check("timeout: status timeout", [x.get("status") for x in l] == ["timeout"], l)
+check("timeout: killed at the limit", l and 0.3 <= l[0].get("seconds", 0) < 2.5, l)
+check("timeout: the batch did not wait for the drawing", wall < 15, wall)
+check("timeout: no mesh left", not os.path.exists(os.path.join(root, "out-timeout", "heavy.msh")))
+check_schema("timeout", l)
+
+# --- A memory limit too small for one drawing, enough for the others ----------------------------
+# <use> nesting: ten copies of ten copies ... of a path of 50 cubics: half a million curves, some 600 MB.
+cubics = "".join(f" C {i + 0.3} 1 {i + 0.6} 2 {i + 1} 0" for i in range(50))
+defs = f'<path id="g0" d="M 0 0{cubics}" fill="none" stroke="black"/>'
+for level in range(1, 5):
+    defs += f'<g id="g{level}">' + "".join(f'<use href="#g{level - 1}" x="{k * 0.01}"/>' for k in range(10)) + "</g>"
+hungry = write(os.path.join(root, "mem", "hungry.svg"), SVG.format(f"<defs>{defs}</defs><use href=\"#g4\"/>"))
+mem_inputs = [hungry] + [os.path.join(inputs, n) for n in example_names]
+r, _ = run("batch", *mem_inputs, "-o", os.path.join(root, "out-mem"), "--memory-limit", "0.1", "--timeout", "20",
+           "--jobs", "2", "--linear")
+l = by_path(read_report(os.path.join(root, "out-mem", "report.jsonl")))
+check("memory: exit 1", r.returncode == 1, f"exit {r.returncode}: {r.stderr}")
+check("memory: the hungry drawing runs out of memory (not ok, not a time-out)",
+      l.get(hungry, {}).get("status") in ("out-of-memory", "crash"), l.get(hungry))
+check("memory: the others are unaffected",
+      all(l.get(p, {}).get("status") == "ok" for p in mem_inputs[1:]), [l.get(p, {}).get("status") for p in mem_inputs])
+check_schema("memory", list(l.values()))
+
+# --- Shards add up to the whole; folders mirror; default shard report names ---------------------
+corpus = os.path.join(root, "corpus")
+for sub in ("a", "b"):
+    for n in example_names:
+        os.makedirs(os.path.join(corpus, sub), exist_ok=True)
+        shutil.copy(os.path.join(examples, n), os.path.join(corpus, sub, n))
+write(os.path.join(corpus, "b", "broken.svg"), "this is not XML")
+whole_out = os.path.join(root, "out-whole")
+r, _ = run("batch", corpus, "-o", whole_out, "--linear", "--jobs", "2")
+whole = read_report(os.path.join(whole_out, "report.jsonl"))
+check("whole: 7 drawings", len(whole) == 7, [x.get("path") for x in whole])
+check("whole: same names in two folders do not collide",
+      all(os.path.exists(os.path.join(whole_out, sub, n[:-4] + ".msh")) for sub in ("a", "b") for n in example_names))
+shard_out = os.path.join(root, "out-shards")
+shards = []
+for k in (1, 2, 3):
+    extra = ["--report", os.path.join(root, f"shard-{k}.jsonl")] if k != 2 else []
+    r, _ = run("batch", corpus, "-o", shard_out, "--linear", "--shard", f"{k}/3", *extra)
+    check(f"shard {k}/3: exit code as its drawings say", r.returncode in (0, 1), f"exit {r.returncode}: {r.stderr}")
+    shards.append(read_report(os.path.join(root, f"shard-{k}.jsonl") if k != 2 else
+                              os.path.join(shard_out, "report-2-of-3.jsonl")))
+all_paths = [x["path"] for x in whole]
+for k, lines in enumerate(shards, 1):
+    check(f"shard {k}/3: every third drawing of the sorted list",
+          [x["path"] for x in lines] == [p for i, p in enumerate(all_paths) if i % 3 == k - 1], [x["path"] for x in lines])
+union = [x["path"] for lines in shards for x in lines]
+check("shards: add up exactly to the whole", sorted(union) == sorted(all_paths) and len(union) == len(set(union)), union)
+check("shards: same statuses as the whole",
+      {x["path"]: x["status"] for lines in shards for x in lines} == {x["path"]: x["status"] for x in whole})
+
+# --- List files: comments, relative paths, duplicates; colliding names get a suffix -------------
+lst = write(os.path.join(root, "lists", "drawings.txt"),
+            "# two drawings of the same name, one twice\n"
+            f"../corpus/a/{example_names[0]}\n\n"
+            f"  ../corpus/b/{example_names[0]}   # the other folder\n"
+            f"{os.path.join(corpus, 'a', example_names[0])}\n")
+list_out = os.path.join(root, "out-list")
+r, _ = run("batch", lst, os.path.join(corpus, "a", "..", "a", example_names[0]), "-o", list_out, "--linear")
+l = read_report(os.path.join(list_out, "report.jsonl"))
+check("list: exit 0", r.returncode == 0, f"exit {r.returncode}: {r.stderr}")
+check("list: each file once, relative to the list's folder",
+      [x.get("path") for x in l] == [os.path.join(corpus, s, example_names[0]) for s in ("a", "b")], l)
+meshes = sorted(os.listdir(list_out))
+stem = example_names[0][:-4]
+check("list: colliding names get distinct suffixed files",
+      len([m for m in meshes if m.startswith(stem + "-") and m.endswith(".msh")]) == 2, meshes)
+r, _ = run("batch", lst, "-o", list_out, "--linear")
+check("list: suffixes are stable (second run skips)",
+      [x.get("status") for x in read_report(os.path.join(list_out, "report.jsonl"))] == ["skipped", "skipped"])
+
+# --- Mesh options are forwarded ------------------------------------------------------------------
+coarse_out = os.path.join(root, "out-coarse")
+r, _ = run("batch", os.path.join(corpus, "a"), "-o", coarse_out, "--linear", "-l", "0.3")
+coarse = by_path(read_report(os.path.join(coarse_out, "report.jsonl")))
+fine = by_path(whole)
+check("forwarding: -l 0.3 gives fewer triangles than the default",
+      all((coarse.get(p, {}).get("triangles") or 1e9) < (fine[p].get("triangles") or 0) for p in coarse) and coarse,
+      [(coarse[p].get("triangles"), fine.get(p, {}).get("triangles")) for p in coarse])
+
+# --- curvemesh report ----------------------------------------------------------------------------
+html = os.path.join(root, "report.html")
+r, _ = run("report", os.path.join(out, "report.jsonl"), "--html", html)
+check("report: exit 0", r.returncode == 0, r.stderr)
+total = len(expected_paths)
+check("report: success rate", f"success rate: {total - 1} of {total}" in r.stdout, r.stdout)
+check("report: counts by status", "invalid-input 1" in r.stdout and "ok 3" in r.stdout, r.stdout)
+check("report: distributions", "median" in r.stdout and "p90" in r.stdout and "p99" in r.stdout, r.stdout)
+check("report: slowest and failures", "slowest" in r.stdout and "failures by cause" in r.stdout
+      and malformed in r.stdout, r.stdout)
+try:
+    with open(html) as f:
+        page = f.read()
+except OSError:
+    page = ""
+check("report --html: written with histograms", page.count("<svg") >= 2, page[:300])
+check("report --html: self-contained", "http://" not in page and "https://" not in page and "<script" not in page
+      and " src=" not in page, [w for w in ("http://", "https://", "<script", " src=") if w in page])
+check("report --html: lists the failure", "malformed.svg" in page)
+r, _ = run("report", *[os.path.join(root, f"shard-{k}.jsonl") for k in (1, 3)],
+           os.path.join(shard_out, "report-2-of-3.jsonl"))
+check("report: shards together", r.returncode == 0 and "drawings: 7" in r.stdout, r.stdout + r.stderr)
+r, _ = run("report", write(os.path.join(root, "bad.jsonl"), '{"path": "x.svg"}\n'))
+check("report: a malformed report is refused (exit 1)", r.returncode == 1 and "bad.jsonl:1" in r.stderr, r.stderr)
+
+# --- Usage errors and help ------------------------------------------------------------------------
+usage = {"shard out of range": [inputs, "--shard", "4/3"], "shard not K/N": [inputs, "--shard", "x"],
+         "no such input": [os.path.join(root, "missing.svg")], "no jobs": [inputs, "--jobs", "0"]}
+for name, args in usage.items():
+    r, _ = run("batch", *args, "-o", os.path.join(root, "out-usage"))
+    check(f"usage: {name}: exit 2", r.returncode == 2, f"exit {r.returncode}: {r.stderr}")
+r, _ = run("batch", inputs)
+check("usage: no -o: exit 2", r.returncode == 2, f"exit {r.returncode}")
+r, _ = run("batch", "--help")
+check("batch --help explains every option", r.returncode == 0 and all(
+    o in r.stdout for o in ("--jobs", "--timeout", "--memory-limit", "--report", "--force", "--shard", "--linear",
+                            "--edge-length", "--mu", "--epsilon", "--min-angle", "--max-iterations", "--msh-version")),
+      r.stdout)
+r, _ = run("report", "--help")
+check("report --help", r.returncode == 0 and "--html" in r.stdout, r.stdout)
+
+print(f"{passed} checks passed, {len(failures)} failed")
+sys.exit(1 if failures else 0)
