@@ -17,20 +17,12 @@ import sys
 import tempfile
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import check, finish  # noqa: E402
+
 binary, examples = sys.argv[1], sys.argv[2]
-failures = []
-passed = 0
 tmp = tempfile.TemporaryDirectory()
 root = tmp.name
-
-
-def check(name, condition, detail=""):
-    global passed
-    if condition:
-        passed += 1
-    else:
-        failures.append(f"{name}: {detail}")
-        print(f"FAIL {name}: {detail}")
 
 
 def run(*args, timeout=120):
@@ -291,5 +283,4 @@ check("batch --help explains every option", r.returncode == 0 and all(
 r, _ = run("report", "--help")
 check("report --help", r.returncode == 0 and "--html" in r.stdout, r.stdout)
 
-print(f"{passed} checks passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+finish()

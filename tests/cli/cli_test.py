@@ -10,18 +10,10 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import check, finish  # noqa: E402
+
 binary, examples = sys.argv[1], sys.argv[2]
-failures = []
-passed = 0
-
-
-def check(name, condition, detail=""):
-    global passed
-    if condition:
-        passed += 1
-    else:
-        failures.append(f"{name}: {detail}")
-        print(f"FAIL {name}: {detail}")
 
 
 def run(*args, timeout=60):
@@ -118,5 +110,4 @@ with tempfile.TemporaryDirectory() as tmp:
     h = run("features", "--help")
     check("help exit 0", h.returncode == 0 and "--svg" in h.stdout and "--output" in h.stdout, h.stdout)
 
-print(f"{passed} passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+finish()

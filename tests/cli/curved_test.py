@@ -17,20 +17,12 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import check, finish  # noqa: E402
+
 binary, examples = sys.argv[1], sys.argv[2]
 checker = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools", "msh_check.py")
-failures = []
-passed = 0
 tmp = tempfile.TemporaryDirectory()
-
-
-def check(name, condition, detail=""):
-    global passed
-    if condition:
-        passed += 1
-    else:
-        failures.append(f"{name}: {detail}")
-        print(f"FAIL {name}: {detail}")
 
 
 def run(*args):
@@ -224,5 +216,4 @@ if all("linear" in row and "cubic" in row for row in levels):
     check("circle: cubic edges reproduce the cubic arcs (distance at round-off)", all(row["cubic"] <= 1e-12 * d for row in levels),
           str([row["cubic"] for row in levels]))
 
-print(f"{passed} passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+finish()

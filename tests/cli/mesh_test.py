@@ -14,20 +14,12 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import check, finish  # noqa: E402
+
 binary, examples = sys.argv[1], sys.argv[2]
 checker = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools", "msh_check.py")
-failures = []
-passed = 0
 tmp = tempfile.TemporaryDirectory()
-
-
-def check(name, condition, detail=""):
-    global passed
-    if condition:
-        passed += 1
-    else:
-        failures.append(f"{name}: {detail}")
-        print(f"FAIL {name}: {detail}")
 
 
 def mesh(name, source, *extra):
@@ -165,5 +157,4 @@ if r.returncode == 0:
 r = subprocess.run([binary, "mesh", "--help"], capture_output=True, text=True)
 check("mesh --help", r.returncode == 0 and "--linear" in r.stdout and "--msh-version" in r.stdout, r.stdout[-300:])
 
-print(f"{passed} checks passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+finish()
