@@ -251,6 +251,42 @@ class Builder {
     return true;
   }
 
+  // Whether v's triangles stay counter-clockwise (exactly, as straight triangles) with v at p.
+  bool corners_valid_with(int v, const Vec2& p) const {
+    const TriMesh& m = out_.linear;
+    for (int t : m.triangles_of(v)) {
+      const auto& tri = m.triangle(t);
+      if (m.orientation_with(tri[0], tri[1], tri[2], v, p) <= 0) return false;
+    }
+    return true;
+  }
+
+  // The largest of `measure` (energy, badness) over v's triangles.
+  template <class Measure>
+  double star_worst(int v, const Measure& measure) const {
+    double worst = 0;
+    for (int t : out_.linear.triangles_of(v)) worst = std::max(worst, measure(t));
+    return worst;
+  }
+
+  // Where free corner v should go: compass search, from where it is and a first step of a quarter
+  // of its shortest edge, on the worst `measure` around it (its nodes placed by place_corner);
+  // positions that would turn a corner triangle over are out. Leaves every node as it was.
+  template <class Measure>
+  Vec2 search_corner(int v, const Measure& measure) {
+    const TriMesh& m = out_.linear;
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int w : m.neighbours(v)) shortest = std::min(shortest, (m.point(w) - m.point(v)).norm());
+    const Snapshot saved = snapshot(m.triangles_of(v));
+    return compass_search(out_.nodes[v], 0.25 * shortest, [&](const Vec2& p) {
+      if (!corners_valid_with(v, p)) return std::numeric_limits<double>::infinity();
+      place_corner(v, p);
+      const double worst = star_worst(v, measure);
+      restore(saved);
+      return worst;
+    });
+  }
+
   // Compass search: from x0 with the first step h, in 8 directions, halving h when none lowers
   // `objective`; returns the best point found.
   template <class Objective>
@@ -343,11 +379,7 @@ class Builder {
     CurveNeighbours n;
     if (!curve_neighbours(v, n)) return 0;
     const auto& star = m.triangles_of(v);
-    const auto star_energy = [&] {
-      double e = 0;
-      for (int t : star) e = std::max(e, energy(t));
-      return e;
-    };
+    const auto energy_of = [&](int t) { return energy(t); };
     const Snapshot saved = snapshot(star);
     const mesh::EdgeFeature fx = *m.feature(v, n.x), fy = *m.feature(v, n.y);
     const auto undo = [&] {
@@ -359,18 +391,14 @@ class Builder {
     const mesh::SectionCurve& curve = c_.sections[tag0.section];
     const double lo = std::min(n.tx, n.ty), hi = std::max(n.tx, n.ty), margin = 1e-3 * (hi - lo);
     const auto objective = [&](double t) {
-      if (!(t > lo + margin && t < hi - margin)) return std::numeric_limits<double>::infinity();
-      const Vec2 p = curve.eval(t);
-      for (int s : star) {
-        const auto& tri = m.triangle(s);
-        if (m.orientation_with(tri[0], tri[1], tri[2], v, p) <= 0) return std::numeric_limits<double>::infinity();
-      }
+      if (!(t > lo + margin && t < hi - margin) || !corners_valid_with(v, curve.eval(t)))
+        return std::numeric_limits<double>::infinity();
       place_on_curve_at(v, n, t);
-      const double e = star_energy();
+      const double e = star_worst(v, energy_of);
       undo();
       return e;
     };
-    const double before = star_energy();
+    const double before = star_worst(v, energy_of);
     double t = tag0.t, best = before, h = 0.25 * std::min(t - lo, hi - t);
     for (int halvings = 0; halvings < 12;) {
       bool improved = false;
@@ -402,11 +430,8 @@ class Builder {
     const geometry::ClosestPoint cp = geometry::closest_point(curve.piece, m.point(v));
     const double t = std::clamp(curve.t0 + cp.t * (curve.t1 - curve.t0), lo + margin, hi - margin);
     const Vec2 p = curve.eval(t);
+    if (!corners_valid_with(v, p)) return 0;
     const auto& star = m.triangles_of(v);
-    for (int s : star) {
-      const auto& tri = m.triangle(s);
-      if (m.orientation_with(tri[0], tri[1], tri[2], v, p) <= 0) return 0;
-    }
     const Snapshot saved = snapshot(star);
     const mesh::EdgeFeature fx = *m.feature(v, n.x), fy = *m.feature(v, n.y);
     mesh::VertexTag tag = tag0;
@@ -429,30 +454,14 @@ class Builder {
   int smooth_corner(int v) {
     TriMesh& m = out_.linear;
     const auto& star = m.triangles_of(v);
-    const auto star_energy = [&] {
-      double e = 0;
-      for (int t : star) e = std::max(e, energy(t));
-      return e;
-    };
+    const auto energy_of = [&](int t) { return energy(t); };
     const Snapshot saved = snapshot(star);  // everything the move can change
     const Vec2 x0 = m.point(v);
-    const double before = star_energy();
-    double shortest = std::numeric_limits<double>::infinity();
-    for (int w : m.neighbours(v)) shortest = std::min(shortest, (m.point(w) - x0).norm());
-    const auto objective = [&](const Vec2& p) {
-      for (int t : star) {  // the corners' triangles stay counter-clockwise too (exactly)
-        const auto& tri = m.triangle(t);
-        if (m.orientation_with(tri[0], tri[1], tri[2], v, p) <= 0) return std::numeric_limits<double>::infinity();
-      }
-      place_corner(v, p);
-      const double e = star_energy();
-      restore(saved);
-      return e;
-    };
-    const Vec2 x = compass_search(x0, 0.25 * shortest, objective);
-    if (x == x0 || !(objective(x) < before)) return 0;
+    const double before = star_worst(v, energy_of);
+    const Vec2 x = search_corner(v, energy_of);
+    if (x == x0) return 0;
     place_corner(v, x);
-    if (!certify_all(star)) {
+    if (!(star_worst(v, energy_of) < before) || !certify_all(star)) {
       restore(saved);
       return 0;
     }
@@ -556,24 +565,7 @@ class Builder {
     place_on_curve(lo, hi);
     for (int t : triangles) choose_centre_of(t);
     for (int v : movable) {
-      const auto star_badness = [&] {
-        double worst = 0;
-        for (int t : m.triangles_of(v)) worst = std::max(worst, badness(t));
-        return worst;
-      };
-      double shortest = std::numeric_limits<double>::infinity();
-      for (int w : m.neighbours(v)) shortest = std::min(shortest, (m.point(w) - m.point(v)).norm());
-      const Snapshot local = snapshot(m.triangles_of(v));
-      const Vec2 x = compass_search(out_.nodes[v], 0.25 * shortest, [&](const Vec2& p) {
-        for (int t : m.triangles_of(v)) {
-          const auto& tri = m.triangle(t);
-          if (m.orientation_with(tri[0], tri[1], tri[2], v, p) <= 0) return std::numeric_limits<double>::infinity();
-        }
-        place_corner(v, p);
-        const double worst = star_badness();
-        restore(local);
-        return worst;
-      });
+      const Vec2 x = search_corner(v, [&](int t) { return badness(t); });
       place_corner(v, x);
       m.set_position(v, x);  // the next corner's orientation checks see this one where it is now
     }
