@@ -17,12 +17,14 @@ double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(
 
 }  // namespace
 
-double amips(const Vec2& a, const Vec2& b, const Vec2& c) {
-  const Vec2 e1 = b - a, e2 = c - a, f = 2 * e2 - e1;
+double amips_of_edges(const Vec2& e1, const Vec2& e2) {
+  const Vec2 f = 2 * e2 - e1;
   const double det = cross(e1, e2);
   if (!(det > 0)) return std::numeric_limits<double>::infinity();
   return (3 * e1.squaredNorm() + f.squaredNorm()) / (kTwoSqrt3 * det);
 }
+
+double amips(const Vec2& a, const Vec2& b, const Vec2& c) { return amips_of_edges(b - a, c - a); }
 
 AmipsDerivatives& AmipsDerivatives::operator+=(const AmipsDerivatives& o) {
   energy += o.energy;

@@ -13,6 +13,10 @@
 namespace curvemesh::geometry {
 
 double amips(const Vec2& a, const Vec2& b, const Vec2& c);
+// The same energy of the linear map that takes the reference triangle (0,0), (1,0), (0,1) to
+// edges e1 and e2: amips(a, b, c) is amips_of_edges(b - a, c - a); a curved element's energy at a
+// point is that of its Jacobian's columns.
+double amips_of_edges(const Vec2& e1, const Vec2& e2);
 
 struct AmipsDerivatives {
   double energy = 0;

@@ -5,6 +5,8 @@
 #include <limits>
 #include <vector>
 
+#include "geometry/amips.hpp"
+
 namespace curvemesh::geometry {
 
 Vec2 p3_reference_node(int i) {
@@ -42,13 +44,8 @@ Eigen::Matrix2d p3_jacobian(const P3Nodes& nodes, double u, double v) {
 }
 
 double p3_amips(const P3Nodes& nodes, double u, double v) {
-  // J_ref = [x_u x_v]; from the equilateral triangle, J = J_ref [[1, −1/√3], [0, 2/√3]]: the
-  // same expression as geometry::amips with e1 = x_u and e2 = x_v.
-  const Eigen::Matrix2d J = p3_jacobian(nodes, u, v);
-  const Vec2 e1 = J.col(0), e2 = J.col(1), f = 2 * e2 - e1;
-  const double det = e1.x() * e2.y() - e1.y() * e2.x();
-  if (!(det > 0)) return std::numeric_limits<double>::infinity();
-  return (3 * e1.squaredNorm() + f.squaredNorm()) / (3.4641016151377544 * det);
+  const Eigen::Matrix2d J = p3_jacobian(nodes, u, v);  // [x_u x_v]
+  return amips_of_edges(J.col(0), J.col(1));
 }
 
 double p3_max_amips(const P3Nodes& nodes) {
