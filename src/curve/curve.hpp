@@ -10,8 +10,14 @@
 //     certified, the one of a few alternatives that is.
 //  3. Validity: the Jacobian determinant of every curved triangle is certified positive on the
 //     whole triangle (Bernstein coefficients, subdivision; geometry/p3_triangle). A primary edge
-//     stays straight when either of its triangles cannot be certified with it curved; the
-//     distance from such an edge to its curve is recorded.
+//     is straightened when either of its triangles cannot be certified with it curved.
+//  4. In part: primary vertices still off their curve are projected onto it; where a triangle's
+//     AMIPS energy exceeds Options::stop_amips, its free corners, its corners on curves (along
+//     them) and its centre node move, each move certified again. (No split, collapse or swap.)
+//  5. A straightened edge gets its free opposite corners moved out of the curve's way; failing
+//     that, it is fitted: bent towards the curve as far as its triangles stay certified and within
+//     the stop energy. The distance left from every fitted or straight edge to its curve is
+//     recorded.
 // High-order nodes are shared: one per edge position, one centre per triangle.
 #include <array>
 #include <vector>
