@@ -18,5 +18,6 @@ Runner add_mesh_command(CLI::App& app);
 Runner add_check_command(CLI::App& app);
 Runner add_batch_command(CLI::App& app);
 Runner add_report_command(CLI::App& app);
+Runner add_verify_command(CLI::App& app);
 
 }  // namespace curvemesh::app

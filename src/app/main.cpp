@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   add(add_check_command(app));
   add(add_batch_command(app));
   add(add_report_command(app));
+  add(add_verify_command(app));
 
   try {
     app.parse(argc, argv);

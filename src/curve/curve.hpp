@@ -6,8 +6,9 @@
 //     or at the mid-parameter of a primary one) until each has at most one.
 //  2. Every primary edge whose two vertices lie on the curve gets the cubic Lagrange nodes at 1/3
 //     and 2/3 of its parameter interval (App. C); all other edges are straight (nodes at thirds).
-//     The centre node is the paper's (the average of the nine others) or, where that map is not
-//     certified, the one of a few alternatives that is.
+//     The centre node reproduces quadratic maps (finite elements keep their order on such maps);
+//     where that map is not certified, the paper's (the average of the nine others), then the
+//     corners' centroid.
 //  3. Validity: the Jacobian determinant of every curved triangle is certified positive on the
 //     whole triangle (Bernstein coefficients, subdivision; geometry/p3_triangle). A primary edge
 //     is straightened when either of its triangles cannot be certified with it curved.
@@ -45,7 +46,7 @@ struct Stats {
   int fitted_edges = 0;         // bent towards the curve as far as certified (step 5), not on it
   int straight_primary_edges = 0;  // left straight: off the curve, or no bend certified at all
   int curved_triangles = 0;     // triangles with a curved edge
-  int alternative_centres = 0;  // curved triangles certified with another centre than the paper's
+  int alternative_centres = 0;  // curved triangles certified only with another centre than the first
   double min_scaled_jacobian = 1;  // over curved triangles (geometry::JacobianCertificate)
   int invalid_triangles = 0;    // triangles whose map is not certified (0 in a mesh that is written)
   double max_distance = 0;      // largest distance from a fitted or straight primary edge to its curve

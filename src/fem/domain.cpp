@@ -1,0 +1,220 @@
+#include "fem/domain.hpp"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <queue>
+#include <utility>
+
+namespace curvemesh::fem {
+
+namespace {
+
+using EdgeKey = std::pair<int, int>;
+EdgeKey key(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
+
+// The triangles on each edge (by corner nodes).
+std::map<EdgeKey, std::vector<std::pair<int, int>>> edge_triangles(const io::HighOrderMesh& mesh) {
+  std::map<EdgeKey, std::vector<std::pair<int, int>>> out;
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    const auto tri = mesh.triangle(t);
+    for (int e = 0; e < 3; ++e) out[key(tri[e], tri[(e + 1) % 3])].emplace_back(t, e);
+  }
+  return out;
+}
+
+struct UnionFind {
+  std::vector<int> parent;
+  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  }
+  void unite(int a, int b) {
+    a = find(a), b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+}  // namespace
+
+std::vector<std::array<int, 3>> edge_lines(const io::HighOrderMesh& mesh) {
+  std::map<EdgeKey, int> line_of;
+  for (int l = 0; l < mesh.line_count(); ++l) line_of.emplace(key(mesh.line(l)[0], mesh.line(l)[1]), l);
+  std::vector<std::array<int, 3>> out(mesh.triangle_count(), {-1, -1, -1});
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    const auto tri = mesh.triangle(t);
+    for (int e = 0; e < 3; ++e) {
+      const auto it = line_of.find(key(tri[e], tri[(e + 1) % 3]));
+      if (it != line_of.end()) out[t][e] = it->second;
+    }
+  }
+  return out;
+}
+
+Regions find_regions(const io::HighOrderMesh& mesh) {
+  const int n = mesh.triangle_count();
+  const auto lines = edge_lines(mesh);
+  auto is_wall = [&](int l) {
+    return l >= 0 && (mesh.line_physical[l] == io::kPhysicalPrimary || mesh.line_physical[l] == io::kPhysicalSecondary);
+  };
+  UnionFind uf(n);
+  const auto triangles_on = edge_triangles(mesh);
+  for (const auto& [edge, ts] : triangles_on)
+    for (std::size_t i = 1; i < ts.size(); ++i)
+      if (!is_wall(lines[ts[0].first][ts[0].second])) uf.unite(ts[0].first, ts[i].first);
+  Regions r;
+  r.of_triangle.assign(n, -1);
+  std::map<int, int> index;  // root -> region, in order of first triangle
+  for (int t = 0; t < n; ++t) {
+    auto [it, inserted] = index.try_emplace(uf.find(t), static_cast<int>(index.size()));
+    r.of_triangle[t] = it->second;
+  }
+  const int count = static_cast<int>(index.size());
+  // Region adjacency across walls; depth by breadth-first search from the border regions.
+  std::vector<std::vector<int>> next(count);
+  std::vector<char> border(count, 0);
+  for (const auto& [edge, ts] : triangles_on) {
+    if (ts.size() == 1) border[r.of_triangle[ts[0].first]] = 1;
+    for (std::size_t i = 1; i < ts.size(); ++i) {
+      const int a = r.of_triangle[ts[0].first], b = r.of_triangle[ts[i].first];
+      if (a != b) next[a].push_back(b), next[b].push_back(a);
+    }
+  }
+  r.depth.assign(count, -1);
+  std::queue<int> queue;
+  for (int i = 0; i < count; ++i)
+    if (border[i]) r.depth[i] = 0, queue.push(i);
+  while (!queue.empty()) {
+    const int i = queue.front();
+    queue.pop();
+    for (int j : next[i])
+      if (r.depth[j] < 0) r.depth[j] = r.depth[i] + 1, queue.push(j);
+  }
+  for (int& d : r.depth)
+    if (d < 0) d = 0;  // not reachable from the border (no border at all): treat as outside
+  return r;
+}
+
+io::HighOrderMesh submesh(const io::HighOrderMesh& mesh, const std::vector<char>& keep) {
+  io::HighOrderMesh out;
+  out.order = mesh.order;
+  out.physical_names = mesh.physical_names;
+  std::vector<int> renumber(mesh.nodes.size(), -1);
+  auto node = [&](int i) {
+    if (renumber[i] < 0) {
+      renumber[i] = static_cast<int>(out.nodes.size());
+      out.nodes.push_back(mesh.nodes[i]);
+    }
+    return renumber[i];
+  };
+  std::vector<int> buffer;
+  const auto lines = edge_lines(mesh);
+  std::vector<char> line_kept(mesh.line_count(), 0);
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    if (!keep[t]) continue;
+    buffer.clear();
+    for (int i : mesh.triangle(t)) buffer.push_back(node(i));
+    out.add_triangle(buffer, mesh.triangle_physical[t]);
+    for (int l : lines[t])
+      if (l >= 0) line_kept[l] = 1;
+  }
+  for (int l = 0; l < mesh.line_count(); ++l) {
+    if (!line_kept[l]) continue;
+    buffer.clear();
+    for (int i : mesh.line(l)) buffer.push_back(node(i));
+    out.add_line(buffer, mesh.line_physical[l]);
+  }
+  return out;
+}
+
+CutMesh cut_open(const io::HighOrderMesh& mesh, const std::vector<char>& cut) {
+  const int n = mesh.triangle_count();
+  const int size = mesh.triangle_size();
+  const int per_edge = mesh.order - 1;  // inner nodes per edge
+  const auto lines = edge_lines(mesh);
+  const auto triangles_on = edge_triangles(mesh);
+  auto is_cut = [&](int t, int e) { return lines[t][e] >= 0 && cut[lines[t][e]]; };
+
+  // Corner copies: (triangle, corner) slots joined across edges that are not cut.
+  UnionFind uf(3 * n);
+  for (const auto& [edge, ts] : triangles_on) {
+    const auto [t0, e0] = ts[0];
+    if (is_cut(t0, e0)) continue;
+    const auto tri0 = mesh.triangle(t0);
+    for (std::size_t i = 1; i < ts.size(); ++i) {
+      const auto [t1, e1] = ts[i];
+      const auto tri1 = mesh.triangle(t1);
+      for (int c0 : {e0, (e0 + 1) % 3})
+        for (int c1 : {e1, (e1 + 1) % 3})
+          if (tri0[c0] == tri1[c1]) uf.unite(3 * t0 + c0, 3 * t1 + c1);
+    }
+  }
+  CutMesh out;
+  out.mesh.order = mesh.order;
+  out.mesh.physical_names = mesh.physical_names;
+  out.mesh.nodes = mesh.nodes;
+  out.node_origin.resize(mesh.nodes.size());
+  std::iota(out.node_origin.begin(), out.node_origin.end(), 0);
+  auto copy = [&](int node) {
+    out.mesh.nodes.push_back(mesh.nodes[node]);
+    out.node_origin.push_back(node);
+    return static_cast<int>(out.mesh.nodes.size()) - 1;
+  };
+  // The first class of a node keeps its index; other classes get copies.
+  std::map<int, int> class_node;     // class root -> node
+  std::map<int, int> node_owner;     // node -> class root that kept it
+  std::vector<int> tris(mesh.triangles);
+  for (int t = 0; t < n; ++t)
+    for (int c = 0; c < 3; ++c) {
+      const int root = uf.find(3 * t + c), node = mesh.triangle(t)[c];
+      auto it = class_node.find(root);
+      if (it == class_node.end()) {
+        const bool first = node_owner.emplace(node, root).second;
+        it = class_node.emplace(root, first ? node : copy(node)).first;
+      }
+      tris[std::size_t(t) * size + c] = it->second;
+    }
+  // Inner edge nodes: on a cut edge, the second triangle gets copies.
+  for (const auto& [edge, ts] : triangles_on) {
+    const auto [t0, e0] = ts[0];
+    if (!is_cut(t0, e0)) continue;
+    for (std::size_t i = 1; i < ts.size(); ++i) {
+      const auto [t1, e1] = ts[i];
+      for (int k = 0; k < per_edge; ++k) {
+        int& slot = tris[std::size_t(t1) * size + 3 + per_edge * e1 + k];
+        slot = copy(slot);
+      }
+    }
+  }
+  out.mesh.triangles = tris;
+  out.mesh.triangle_physical = mesh.triangle_physical;
+  // Lines: a cut line once per side, with that side's nodes; others with the first triangle's.
+  std::vector<int> buffer;
+  std::vector<char> done(mesh.line_count(), 0);
+  for (const auto& [edge, ts] : triangles_on) {
+    const auto [t0, e0] = ts[0];
+    const int l = lines[t0][e0];
+    if (l < 0 || done[l]) continue;
+    done[l] = 1;
+    const auto line = mesh.line(l);
+    for (std::size_t i = 0; i < (cut[l] ? ts.size() : 1); ++i) {
+      const auto [t, e] = ts[i];
+      const auto src = mesh.triangle(t);
+      const int* dst = tris.data() + std::size_t(t) * size;
+      // Map the line's nodes through this triangle: corners by position in the triangle, inner
+      // nodes by the edge's direction in it.
+      const bool same = src[e] == line[0];
+      buffer.assign(line.size(), -1);
+      buffer[0] = dst[same ? e : (e + 1) % 3];
+      buffer[1] = dst[same ? (e + 1) % 3 : e];
+      for (int k = 0; k < per_edge; ++k) buffer[2 + k] = dst[3 + per_edge * e + (same ? k : per_edge - 1 - k)];
+      out.mesh.add_line(buffer, mesh.line_physical[l]);
+      out.line_origin.push_back(l);
+    }
+  }
+  // Lines on no triangle edge (should not happen) are dropped.
+  return out;
+}
+
+}  // namespace curvemesh::fem
