@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   add(add_batch_command(app));
   add(add_report_command(app));
   add(add_verify_command(app));
+  add(add_solve_command(app));
 
   try {
     app.parse(argc, argv);

@@ -96,7 +96,8 @@ Regions find_regions(const io::HighOrderMesh& mesh) {
   return r;
 }
 
-io::HighOrderMesh submesh(const io::HighOrderMesh& mesh, const std::vector<char>& keep) {
+io::HighOrderMesh submesh(const io::HighOrderMesh& mesh, const std::vector<char>& keep, std::vector<int>* line_origin) {
+  if (line_origin) line_origin->clear();
   io::HighOrderMesh out;
   out.order = mesh.order;
   out.physical_names = mesh.physical_names;
@@ -124,6 +125,7 @@ io::HighOrderMesh submesh(const io::HighOrderMesh& mesh, const std::vector<char>
     buffer.clear();
     for (int i : mesh.line(l)) buffer.push_back(node(i));
     out.add_line(buffer, mesh.line_physical[l]);
+    if (line_origin) line_origin->push_back(l);
   }
   return out;
 }

@@ -38,7 +38,8 @@ bool valid_name(const std::string& name) {
 
 }  // namespace
 
-std::string vtu_string(const HighOrderMesh& m, const std::vector<VtuCellScalars>& cell_scalars) {
+std::string vtu_string(const HighOrderMesh& m, const std::vector<VtuCellScalars>& cell_scalars,
+                       const std::vector<VtuPointArray>& point_arrays) {
   if (auto error = m.structure_error()) throw std::logic_error("vtu: " + *error);
   const int triangles = m.triangle_count();
   for (const VtuCellScalars& s : cell_scalars) {
@@ -47,6 +48,13 @@ std::string vtu_string(const HighOrderMesh& m, const std::vector<VtuCellScalars>
     if (static_cast<int>(s.values.size()) != triangles)
       throw std::logic_error("vtu: cell array " + s.name + " has " + std::to_string(s.values.size()) +
                              " values for " + std::to_string(triangles) + " triangles");
+  }
+  for (const VtuPointArray& a : point_arrays) {
+    if (!valid_name(a.name) || (a.components != 1 && a.components != 3))
+      throw std::logic_error("vtu: bad point array '" + a.name + "'");
+    if (a.values.size() != std::size_t(a.components) * m.nodes.size())
+      throw std::logic_error("vtu: point array " + a.name + " has " + std::to_string(a.values.size()) + " values for " +
+                             std::to_string(m.nodes.size()) + " nodes");
   }
   const int size = m.triangle_size();
   const int* vtk_from_gmsh = kVtkFromGmsh[m.order - 1];
@@ -85,13 +93,25 @@ std::string vtu_string(const HighOrderMesh& m, const std::vector<VtuCellScalars>
     for (double v : s.values) t += number(v) + "\n";
     t += "</DataArray>\n";
   }
-  t += "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  t += "</CellData>\n";
+  if (!point_arrays.empty()) {
+    t += "<PointData>\n";
+    for (const VtuPointArray& a : point_arrays) {
+      t += "<DataArray type=\"Float64\" Name=\"" + a.name + "\" NumberOfComponents=\"" + std::to_string(a.components) +
+           "\" format=\"ascii\">\n";
+      for (std::size_t i = 0; i < a.values.size(); ++i)
+        t += number(a.values[i]) + ((i + 1) % a.components == 0 ? "\n" : " ");
+      t += "</DataArray>\n";
+    }
+    t += "</PointData>\n";
+  }
+  t += "</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
   return t;
 }
 
 void write_vtu(const HighOrderMesh& mesh, const std::string& path,
-               const std::vector<VtuCellScalars>& cell_scalars) {
-  write_file_atomically(path, vtu_string(mesh, cell_scalars));
+               const std::vector<VtuCellScalars>& cell_scalars, const std::vector<VtuPointArray>& point_arrays) {
+  write_file_atomically(path, vtu_string(mesh, cell_scalars, point_arrays));
 }
 
 }  // namespace curvemesh::io

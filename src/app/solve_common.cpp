@@ -1,0 +1,87 @@
+#include "app/solve_common.hpp"
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "app/commands.hpp"
+#include "app/feature_options.hpp"
+#include "io/output_file.hpp"
+#include "svg/error.hpp"
+#include "svg/reader.hpp"
+
+namespace curvemesh::app {
+
+void add_solve_options(CLI::App& cmd, SolveOptions& o, const std::string& default_domain) {
+  o.domain = default_domain;
+  cmd.add_option("input", o.input, "SVG drawing to mesh and solve on")->required();
+  cmd.add_option("-o,--output", o.output_vtu,
+                 "VTK XML file (.vtu) to write: the domain's mesh with the solution at its nodes (opens in ParaView)");
+  cmd.add_option("--png", o.output_png, "also draw the solution into this PNG picture");
+  cmd.add_option("--width", o.width, "width of the PNG picture in pixels")->capture_default_str()->check(CLI::Range(8, 20000));
+  cmd.add_flag("--linear", o.linear,
+               "solve on straight triangles: the same mesh with its straight (P1) map instead of the cubic one");
+  cmd.add_option("--domain", o.domain,
+                 "where the problem lives: inside (regions enclosed by an odd number of curves, the even-odd rule), "
+                 "outside (the others), or all (the whole meshed box)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"inside", "outside", "all"}));
+  add_feature_options(cmd, o.drawing.features);
+}
+
+std::optional<Problem> prepare_problem(const SolveOptions& o, int* exit_code) {
+  *exit_code = kOk;
+  if (!feature_options_valid(o.drawing.features)) {
+    *exit_code = kUsage;
+    return std::nullopt;
+  }
+  Problem p;
+  try {
+    const svg::FeatureSoup soup = svg::read_svg_file(o.input, {});
+    for (const std::string& w : soup.warnings) std::cerr << "curvemesh: " << o.input << ": warning: " << w << "\n";
+    p.drawing = fem::mesh_drawing(soup, o.drawing);
+  } catch (const svg::InputError& e) {
+    std::cerr << "curvemesh: " << e.what() << "\n";
+    *exit_code = kInvalidInput;
+    return std::nullopt;
+  } catch (const fem::DrawingError& e) {
+    std::cerr << "curvemesh: " << o.input << ": " << e.what() << "; nothing solved\n";
+    *exit_code = kInvalidInput;
+    return std::nullopt;
+  }
+  const io::HighOrderMesh& whole = p.drawing.mesh;
+  p.view = geometry::Box2();
+  for (const geometry::Vec2& x : whole.nodes) p.view.add(x);
+  const fem::Regions regions = fem::find_regions(whole);
+  std::vector<char> keep(whole.triangle_count());
+  int kept = 0;
+  for (int t = 0; t < whole.triangle_count(); ++t) {
+    const int depth = regions.depth[regions.of_triangle[t]];
+    keep[t] = o.domain == "all" || (o.domain == "inside") == (depth % 2 == 1);
+    kept += keep[t];
+  }
+  if (kept == 0) {
+    std::cerr << "curvemesh: " << o.input << ": the domain '" << o.domain
+              << "' is empty (no region of the drawing is enclosed by its curves); try --domain all\n";
+    *exit_code = kInvalidInput;
+    return std::nullopt;
+  }
+  p.mesh = fem::submesh(whole, keep, &p.line_origin);
+  if (o.linear) p.mesh = fem::straight_mesh(p.mesh);
+  std::cerr << "curvemesh: meshed " << o.input << " in " << p.drawing.seconds << " s: " << p.mesh.triangle_count()
+            << " triangles in the domain (" << (o.linear ? "straight" : "cubic") << " map)\n";
+  return p;
+}
+
+int write_outputs(const SolveOptions& o, const io::HighOrderMesh& mesh, const std::vector<io::VtuPointArray>& arrays,
+                  const fem::Image* picture) {
+  try {
+    if (!o.output_vtu.empty()) io::write_vtu(mesh, o.output_vtu, {}, arrays);
+    if (picture && !o.output_png.empty()) fem::write_png(*picture, o.output_png);
+  } catch (const io::OutputError& e) {
+    std::cerr << "curvemesh: " << e.what() << "\n";
+    return kInvalidInput;
+  }
+  return kOk;
+}
+
+}  // namespace curvemesh::app

@@ -1,0 +1,50 @@
+#pragma once
+// What every `curvemesh solve ...` command (and `diffuse`) shares: the input drawing and its
+// meshing options, the choice of straight geometry, which part of the box is the domain, the
+// outputs (VTU, PNG), and the steps from a file name to the mesh a problem is solved on.
+#include <optional>
+#include <string>
+
+#include "fem/domain.hpp"
+#include "fem/drawing.hpp"
+#include "fem/output.hpp"
+#include "fem/space.hpp"
+#include "io/vtu_writer.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace curvemesh::app {
+
+struct SolveOptions {
+  std::string input;
+  std::string output_vtu, output_png;
+  int width = 800;       // PNG width in pixels
+  bool linear = false;   // P2 on the straight map of the same mesh instead of the cubic one
+  std::string domain;    // "inside" (odd depth), "outside" (even depth) or "all"
+  fem::DrawingOptions drawing;
+};
+
+// Registers input, -o/--output (VTU), --png, --width, --linear, --domain (default as given)
+// and the feature options.
+void add_solve_options(CLI::App& cmd, SolveOptions& options, const std::string& default_domain);
+
+// The domain of a problem: the chosen regions of the meshed drawing, with the straight map when
+// asked.
+struct Problem {
+  fem::MeshedDrawing drawing;                // the whole box, cubic
+  io::HighOrderMesh mesh;                    // the domain (cubic, or straight with --linear)
+  std::vector<int> line_origin;              // per line of `mesh`: the line of drawing.mesh
+  geometry::Box2 view;                       // the box, for pictures
+};
+
+// Reads and meshes the drawing and keeps the domain's triangles. On failure says why on stderr
+// and returns nothing, with the exit code in *exit_code.
+std::optional<Problem> prepare_problem(const SolveOptions& options, int* exit_code);
+
+// Writes the VTU (mesh with point arrays) and the PNG (when asked). Returns an exit code.
+int write_outputs(const SolveOptions& options, const io::HighOrderMesh& mesh,
+                  const std::vector<io::VtuPointArray>& arrays, const fem::Image* picture);
+
+}  // namespace curvemesh::app
