@@ -32,6 +32,10 @@ void Geometry::map(int t, const Vec2& xi, Vec2& x, Eigen::Matrix2d& jacobian) co
   Eigen::VectorXd n;
   Eigen::MatrixX2d dn;
   basis_.evaluate(xi, n, dn);
+  map(t, n, dn, x, jacobian);
+}
+
+void Geometry::map(int t, const Eigen::VectorXd& n, const Eigen::MatrixX2d& dn, Vec2& x, Eigen::Matrix2d& jacobian) const {
   const auto tri = mesh_.triangle(t);
   x.setZero();
   jacobian.setZero();
@@ -122,21 +126,32 @@ void ElementValues::compute(const Geometry& geometry, const Space& space, const 
   value.resize(n);
   grad.resize(n);
   det.resize(n);
+  if (points_ != q.points || geometry_order_ != geometry.order() || space_degree_ != space.degree()) {
+    points_ = q.points;
+    geometry_order_ = geometry.order();
+    space_degree_ = space.degree();
+    geometry_value_.resize(n), geometry_grad_.resize(n), space_value_.resize(n), space_grad_.resize(n);
+    for (int k = 0; k < n; ++k) {
+      geometry.basis().evaluate(q.points[k], geometry_value_[k], geometry_grad_[k]);
+      space.basis().evaluate(q.points[k], space_value_[k], space_grad_[k]);
+    }
+  }
   Eigen::Matrix2d j;
-  Eigen::MatrixX2d g;
   for (int k = 0; k < n; ++k) {
-    geometry.map(t, q.points[k], x[k], j);
+    geometry.map(t, geometry_value_[k], geometry_grad_[k], x[k], j);
     det[k] = j.determinant();
     weight[k] = q.weights[k] * std::abs(det[k]);
-    space.basis().evaluate(q.points[k], value[k], g);
+    value[k] = space_value_[k];
     // ∇x φ = J⁻ᵀ ∇ξ φ: as rows, g · J⁻¹.
-    grad[k] = g * j.inverse();
+    grad[k].noalias() = space_grad_[k] * j.inverse();
   }
 }
 
 int quadrature_degree(const Geometry& geometry, const Space& space) {
-  // det J has degree 2 (order - 1); two basis functions 2·degree.
-  return 2 * space.degree() + 2 * (geometry.order() - 1) + (geometry.order() > 1 ? 2 : 0);
+  // det J has degree 2 (order - 1); two basis functions 2·degree. Exact for mass matrices; the
+  // stiffness integrand of a curved triangle is rational (1 / det J) and is integrated to the
+  // same degree, which keeps P2's full order on the disk of fem/convergence.hpp.
+  return 2 * space.degree() + 2 * (geometry.order() - 1);
 }
 
 }  // namespace curvemesh::fem

@@ -24,7 +24,10 @@ class Geometry {
   int order() const { return mesh_.order; }
   int triangle_count() const { return mesh_.triangle_count(); }
 
+  const LagrangeBasis& basis() const { return basis_; }
   Vec2 map(int t, const Vec2& xi) const;
+  // The same from the geometric basis' values and reference gradients at ξ (see basis()).
+  void map(int t, const Eigen::VectorXd& n, const Eigen::MatrixX2d& dn, Vec2& x, Eigen::Matrix2d& jacobian) const;
   // Position and Jacobian ∂x/∂ξ at a reference point.
   void map(int t, const Vec2& xi, Vec2& x, Eigen::Matrix2d& jacobian) const;
   // The reference point of triangle t that maps to x (Newton from the centroid), or nothing if
@@ -75,6 +78,14 @@ struct ElementValues {
 
   void compute(const Geometry& geometry, const Space& space, const Quadrature& q, int t);
   int points() const { return static_cast<int>(weight.size()); }
+
+ private:
+  // The reference values of both bases at the quadrature points, computed once per rule and
+  // pair of orders rather than once per triangle.
+  std::vector<Vec2> points_;
+  int geometry_order_ = 0, space_degree_ = 0;
+  std::vector<Eigen::VectorXd> geometry_value_, space_value_;
+  std::vector<Eigen::MatrixX2d> geometry_grad_, space_grad_;
 };
 
 // A quadrature degree that is exact for mass-type integrands of `space` on `geometry` (products
