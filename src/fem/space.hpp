@@ -88,9 +88,8 @@ struct ElementValues {
   std::vector<Eigen::MatrixX2d> geometry_grad_, space_grad_;
 };
 
-// A quadrature degree that is exact for mass-type integrands of `space` on `geometry` (products
-// of two basis functions times det J) and ample for the rational stiffness integrands of
-// curved triangles.
+// The quadrature degree for integrands of two basis functions of `space` on `geometry`: exact on
+// straight maps, two degrees more on cubic ones (their integrands are rational).
 int quadrature_degree(const Geometry& geometry, const Space& space);
 
 }  // namespace curvemesh::fem

@@ -507,7 +507,38 @@ bool release_secondary_edge(TriMesh& m, const Constraints& c, int a, int b) {
     shadowed |= m.feature(a, x) != nullptr && m.feature(x, b) != nullptr &&
                 c.envelope.contains(m.point(a), m.point(x)) && c.envelope.contains(m.point(x), m.point(b));
   }
-  if (!shadowed) return false;
+  if (!shadowed) {
+    // A vertex x that is no feature's (or only secondary features') and lies so close to the
+    // chord that a–x and x–b are inside the ε-envelope too: the secondary edge moves onto the
+    // path a–x–b, which stands for the input as well, and the sliver a–b–x (three fixed vertices
+    // in a row, say) becomes improvable by a swap of a–b.
+    const EdgeFeature moved = *f;
+    for (int t : m.edge_triangles(a, b)) {
+      const auto& tri = m.triangle(t);
+      const int x = tri[0] != a && tri[0] != b ? tri[0] : tri[1] != a && tri[1] != b ? tri[1] : tri[2];
+      const VertexKind k = m.tag(x).kind;
+      if (k == VertexKind::primary || k == VertexKind::boundary) continue;
+      if (m.has_exact(x) || m.has_exact(a) || m.has_exact(b)) continue;
+      const EdgeFeature* ax = m.feature(a, x);
+      const EdgeFeature* xb = m.feature(x, b);
+      if ((ax && ax->kind != EdgeKind::secondary) || (xb && xb->kind != EdgeKind::secondary)) continue;
+      // Only a chord that is the triangle's longest edge moves (else the tag would go round the
+      // sliver and come back).
+      const double chord = (m.point(a) - m.point(b)).squaredNorm();
+      if (!(chord > (m.point(a) - m.point(x)).squaredNorm() && chord > (m.point(x) - m.point(b)).squaredNorm())) continue;
+      if (!c.envelope.contains(m.point(a), m.point(x)) || !c.envelope.contains(m.point(x), m.point(b))) continue;
+      m.clear_feature(a, b);
+      if (!ax) m.set_feature(a, x, moved);
+      if (!xb) m.set_feature(x, b, moved);
+      if (k == VertexKind::free) {
+        VertexTag tag = m.tag(x);
+        tag.kind = VertexKind::secondary;
+        m.set_tag(x, tag);
+      }
+      return true;
+    }
+    return false;
+  }
   m.clear_feature(a, b);
   for (int v : {a, b}) {
     if (m.tag(v).kind != VertexKind::secondary) continue;

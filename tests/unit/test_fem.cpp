@@ -136,7 +136,7 @@ TEST(Geometry, InverseFindsTheReferencePointOfACurvedTriangle) {
   m.nodes[t0[7]] += Vec2(0.05, -0.05);  // edge 2→0 of the first triangle is the diagonal
   m.nodes[t0[8]] += Vec2(0.05, -0.05);
   const Geometry g(m);
-  for (const Vec2 xi : {Vec2(0.2, 0.3), Vec2(0.6, 0.35), Vec2(0.05, 0.9)}) {
+  for (const Vec2& xi : {Vec2(0.2, 0.3), Vec2(0.6, 0.35), Vec2(0.05, 0.9)}) {
     Vec2 back;
     ASSERT_TRUE(g.inverse(0, g.map(0, xi), back));
     EXPECT_NEAR((back - xi).norm(), 0.0, 1e-12);

@@ -302,5 +302,42 @@ TEST(MeshOperations, SecondaryChordIsReleasedOnlyWhenThePathBesideItStaysInTheEn
   EXPECT_NE(outside.mesh.feature(0, 1), nullptr);
 }
 
+// The same chord with x on no feature (a fixed point, say, or a free vertex) 1e-13 above it: the
+// secondary tag moves onto a–x–b, once, and the flat triangle can then be swapped away.
+TEST(MeshOperations, SecondaryChordMovesOntoAnUntaggedApexInsideTheEnvelope) {
+  for (VertexKind kind : {VertexKind::fixed, VertexKind::free}) {
+    Fixture f = chord_beside_path(1e-13);
+    f.mesh.clear_feature(0, 2);
+    f.mesh.clear_feature(2, 1);
+    VertexTag tag;
+    tag.kind = kind;
+    f.mesh.set_tag(2, tag);
+    ASSERT_TRUE(release_secondary_edge(f.mesh, f.constraints, 0, 1));
+    EXPECT_EQ(f.mesh.feature(0, 1), nullptr);
+    ASSERT_NE(f.mesh.feature(0, 2), nullptr);
+    ASSERT_NE(f.mesh.feature(2, 1), nullptr);
+    EXPECT_EQ(f.mesh.feature(0, 2)->kind, EdgeKind::secondary);
+    EXPECT_EQ(f.mesh.tag(2).kind, kind == VertexKind::free ? VertexKind::secondary : VertexKind::fixed);
+    // The short edges are not the triangle's longest: they do not move back onto a–b.
+    EXPECT_FALSE(release_secondary_edge(f.mesh, f.constraints, 0, 2));
+    EXPECT_FALSE(release_secondary_edge(f.mesh, f.constraints, 2, 1));
+    EXPECT_EQ(f.mesh.feature(0, 1), nullptr);
+    EXPECT_FALSE(f.mesh.structure_error());
+  }
+  // Beyond the envelope, or with x on a primary curve, nothing moves.
+  Fixture far = chord_beside_path(0.01);
+  far.mesh.clear_feature(0, 2);
+  far.mesh.clear_feature(2, 1);
+  far.mesh.set_tag(2, VertexTag{});
+  EXPECT_FALSE(release_secondary_edge(far.mesh, far.constraints, 0, 1));
+  Fixture primary = chord_beside_path(1e-13);
+  primary.mesh.clear_feature(0, 2);
+  primary.mesh.clear_feature(2, 1);
+  VertexTag on_curve;
+  on_curve.kind = VertexKind::primary;
+  primary.mesh.set_tag(2, on_curve);
+  EXPECT_FALSE(release_secondary_edge(primary.mesh, primary.constraints, 0, 1));
+}
+
 }  // namespace
 }  // namespace curvemesh::mesh
