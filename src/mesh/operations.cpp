@@ -244,7 +244,7 @@ int split_edge(TriMesh& m, const Constraints& c, int a, int b, double energy_bou
 
 bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double energy_bound) {
   const VertexTag& tag = m.tag(from);
-  if (tag.kind == VertexKind::fixed || tag.isolated || m.has_exact(from)) return false;
+  if (tag.kind == VertexKind::fixed || tag.isolated) return false;
   const EdgeFeature* edge = m.feature(from, to);
   switch (tag.kind) {
     case VertexKind::primary:

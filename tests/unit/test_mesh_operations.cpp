@@ -341,3 +341,34 @@ TEST(MeshOperations, SecondaryChordMovesOntoAnUntaggedApexInsideTheEnvelope) {
 
 }  // namespace
 }  // namespace curvemesh::mesh
+
+namespace curvemesh::mesh {
+namespace {
+
+// A vertex whose exact position rounds onto its neighbour's (two features 1e-20 apart) can
+// never be rounded; collapsing it into that neighbour removes it, and the mesh keeps no exact
+// vertex and stays valid (orientation is decided on what stays).
+TEST(MeshOperations, AnExactVertexCollapsesIntoItsNeighbour) {
+  TriMesh m;
+  VertexTag fixed;
+  fixed.kind = VertexKind::fixed;
+  const int a = m.add_vertex(Vec2(0, 0), fixed), b = m.add_vertex(Vec2(1, 0), fixed);
+  const int c = m.add_vertex(Vec2(1, 1), fixed), d = m.add_vertex(Vec2(0, 1), fixed);
+  const int x = m.add_vertex(Vec2(0.5, 0.5));
+  m.set_exact_position(x, ExactPoint(mpq_class(1, 2) + mpq_class(1, 100000) / mpq_class("100000000000000000"), mpq_class(1, 2)));
+  const int y = m.add_vertex(Vec2(0.5, 0.5));  // x's double
+  for (const Triangle& t : {Triangle{a, b, x}, Triangle{b, c, y}, Triangle{c, d, y}, Triangle{d, a, x},
+                            Triangle{y, b, x}, Triangle{y, x, d}})
+    m.add_triangle(t[0], t[1], t[2]);
+  ASSERT_FALSE(m.structure_error()) << *m.structure_error();
+  ASSERT_EQ(m.exact_vertex_count(), 1);
+  Constraints constraints;
+  ASSERT_TRUE(collapse_edge(m, constraints, x, y, 1e9));
+  m.compact();
+  EXPECT_EQ(m.exact_vertex_count(), 0);
+  EXPECT_EQ(m.vertex_count(), 5);
+  EXPECT_FALSE(m.structure_error());
+}
+
+}  // namespace
+}  // namespace curvemesh::mesh
