@@ -50,6 +50,17 @@ TEST(SideColors, InheritedFromGroupsAndUse) {
   EXPECT_EQ(sides(s.curves[3]), "#000080 none");  // the element's own wins
 }
 
+TEST(SideColors, FromTheRootAndThroughSymbols) {
+  const FeatureSoup s = read_svg(
+      "<svg xmlns='http://www.w3.org/2000/svg' data-color-left='silver'>"
+      "<symbol id='s' data-color-right='lime'><path d='M0 5 L1 5'/></symbol>"
+      "<path d='M0 0 L1 0'/><use href='#s'/></svg>",
+      {}, "test.svg");
+  ASSERT_EQ(s.curves.size(), 2u);
+  EXPECT_EQ(sides(s.curves[0]), "#c0c0c0 none");
+  EXPECT_EQ(sides(s.curves[1]), "#c0c0c0 #00ff00");
+}
+
 TEST(SideColors, NotCssProperties) {
   // Data attributes: neither the style attribute nor a style sheet sets them.
   const FeatureSoup s = read(
