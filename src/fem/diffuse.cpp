@@ -2,6 +2,8 @@
 
 #include <chrono>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include "fem/assembly.hpp"
 
@@ -48,8 +50,10 @@ DiffusionMesh cut_along_curves(const MeshedDrawing& drawing, const std::vector<S
   const io::HighOrderMesh& mesh = drawing.mesh;
   auto coloured = [&](int l) {
     const int physical = mesh.line_physical[l], curve = drawing.line_curve[l];
-    return (physical == io::kPhysicalPrimary || physical == io::kPhysicalSecondary) && curve >= 0 &&
-           curve < static_cast<int>(colours.size());
+    if (curve >= static_cast<int>(colours.size()))
+      throw std::invalid_argument("cut_along_curves: a line lies on curve " + std::to_string(curve) + " of " +
+                                  std::to_string(colours.size()) + " coloured");
+    return (physical == io::kPhysicalPrimary || physical == io::kPhysicalSecondary) && curve >= 0;
   };
   DiffusionMesh out;
   std::vector<char> cut(mesh.line_count(), 0);

@@ -50,7 +50,8 @@ struct DiffusionMesh {
 };
 
 // Cuts the drawing's mesh open along its primary and secondary lines that lie on a soup curve
-// (`colours` is indexed by soup curve) and gives each side the colour of the curve on that side.
+// and gives each side the colour of the curve on that side. `colours` is indexed by soup curve
+// (std::invalid_argument when a line's curve is beyond it).
 DiffusionMesh cut_along_curves(const MeshedDrawing& drawing, const std::vector<SideColours>& colours);
 
 struct DiffuseOptions {
