@@ -20,7 +20,7 @@ curvemesh::svg::FeatureSoup random_soup(int n, unsigned seed) {
   for (int i = 0; i < n; ++i) {
     const curvemesh::geometry::Vec2 c(u(rng), u(rng));
     auto q = [&] { return curvemesh::geometry::Vec2(c.x() + size * v(rng), c.y() + size * v(rng)); };
-    soup.curves.push_back({{q(), q(), q(), q()}, 0, {}, {}});
+    soup.curves.push_back({{q(), q(), q(), q()}, 0, {}, {}, {}, {}});
   }
   return soup;
 }

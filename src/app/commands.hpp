@@ -21,6 +21,7 @@ Runner add_batch_command(CLI::App& app);
 Runner add_report_command(CLI::App& app);
 Runner add_verify_command(CLI::App& app);
 Runner add_solve_command(CLI::App& app);
+Runner add_diffuse_command(CLI::App& app);
 
 // The problems under `curvemesh solve`: each registers itself on the `solve` command.
 using SubcommandRunner = std::pair<CLI::App*, Runner>;

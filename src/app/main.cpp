@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   add(add_report_command(app));
   add(add_verify_command(app));
   add(add_solve_command(app));
+  add(add_diffuse_command(app));
 
   try {
     app.parse(argc, argv);

@@ -32,9 +32,16 @@ MeshedDrawing mesh_drawing(const svg::FeatureSoup& soup, DrawingOptions options)
     const int a = line.nodes[0], b = line.nodes[1];
     const auto feature = curved.linear.feature(a, b);
     out.line_curve.push_back(feature ? feature->curve : -1);
-    // EdgeFeature's parameters are at the lower- and higher-numbered vertex.
+    // EdgeFeature's parameters are at the lower- and higher-numbered vertex. A secondary edge
+    // has none (its vertices move within ε of the input): it follows its input segment, which runs
+    // from the segment's t0 to its t1, when it points the same way.
     bool forward = true;
     if (feature && feature->kind == mesh::EdgeKind::primary) forward = (a < b) == (feature->t_lo < feature->t_hi);
+    if (feature && feature->kind == mesh::EdgeKind::secondary && feature->source >= 0) {
+      const features::Segment& s = f.segments[feature->source];
+      const double along = (curved.linear.point(b) - curved.linear.point(a)).dot(s.b - s.a);
+      forward = (along > 0) == (s.t0 <= s.t1);
+    }
     out.line_forward.push_back(forward);
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -25,8 +25,8 @@ struct DrawingOptions {
 struct MeshedDrawing {
   io::HighOrderMesh mesh;          // cubic (10-node) triangles over the whole box
   std::vector<int> line_curve;     // per line: the soup curve it lies on (-1: box side, or none)
-  // Per line: whether its node 0 → node 1 runs the way its curve's parameter grows (primary
-  // lines; true for the others).
+  // Per line: whether its node 0 → node 1 runs the way its curve's parameter grows (primary and
+  // secondary lines; true for the others).
   std::vector<char> line_forward;
   double diagonal = 0;             // d, the input's bounding-box diagonal
   double seconds = 0;              // time to mesh

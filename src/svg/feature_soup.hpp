@@ -40,6 +40,13 @@ struct SoupCurve {
   int source = -1;  // index into FeatureSoup::sources
   Paint stroke;
   Paint fill;
+  // Diffusion-curve colours (Orzan et al. 2008) from the data-color-left and data-color-right
+  // attributes: the colour on each side of the curve, Kind::none where not given. Left is the
+  // left on screen (y down) walking along the curve as its parameter grows: for a curve drawn
+  // rightwards, the side above it. Under a mirroring transform the picture mirrors with the
+  // drawing, so the reader has already swapped the two for such elements.
+  Paint left;
+  Paint right;
 };
 
 struct SoupPoint {

@@ -7,10 +7,12 @@
 #include <fstream>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <pugixml.hpp>
 #include <sstream>
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
 
 #include "svg/entities.hpp"
 #include "svg/error.hpp"
@@ -33,6 +35,7 @@ struct Context {
   Paint fill = Paint::rgb(0, 0, 0);     // SVG initial values
   Paint stroke;
   Paint color = Paint::rgb(0, 0, 0);
+  Paint left, right;                    // data-color-left / data-color-right (none: not given)
   bool visible = true;
   double viewport_width = 100, viewport_height = 100;  // for percentage lengths
   int depth = 0;
@@ -46,7 +49,7 @@ struct PendingSubpath {
   std::vector<CubicBezier> segments;
   Vec2 start;
   int source;
-  Paint stroke, fill;
+  Paint stroke, fill, left, right;
 };
 
 class Reader {
@@ -71,6 +74,7 @@ class Reader {
   void walk(pugi::xml_node node, Context ctx);
   void walk_children(pugi::xml_node node, const Context& ctx);
   bool apply_style(pugi::xml_node node, std::string_view tag, Context& ctx);  // false: display:none
+  void apply_side_colors(pugi::xml_node node, Context& ctx);
   void apply_transform(pugi::xml_node node, Context& ctx);
   void walk_use(pugi::xml_node node, Context ctx);
   void walk_viewport(pugi::xml_node node, pugi::xml_node content, Context ctx, double x, double y, double width,
@@ -249,6 +253,23 @@ bool Reader::apply_style(pugi::xml_node node, std::string_view tag, Context& ctx
   return true;
 }
 
+// The two colours of a diffusion curve are data attributes, not CSS properties: no style sheet or
+// style attribute sets them, but like presentation attributes they pass from a group to what it
+// draws. A value that is not a colour is ignored (the inherited one stays), with a warning: unlike
+// a misspelt fill, nothing else in the document would show it.
+void Reader::apply_side_colors(pugi::xml_node node, Context& ctx) {
+  for (const auto& [name, slot] :
+       {std::pair{"data-color-left", &ctx.left}, std::pair{"data-color-right", &ctx.right}}) {
+    if (!has_attr(node, name)) continue;
+    const std::string value = attr(node, name);
+    if (const std::optional<Paint> c = parse_color(value))
+      *slot = *c;
+    else
+      warn_once(std::string("bad-side-color:") + name + where(node),
+                where(node) + ": ignored " + name + "=\"" + value + "\" (not a colour)");
+  }
+}
+
 void Reader::apply_transform(pugi::xml_node node, Context& ctx) {
   if (!has_attr(node, "transform")) return;
   const std::string text = attr(node, "transform");
@@ -333,6 +354,7 @@ void Reader::walk(pugi::xml_node node, Context ctx) {
     fail(node, "the document expands to more than " + std::to_string(options_.max_elements) +
                    " elements through <use>");
   if (!apply_style(node, tag, ctx)) return;
+  apply_side_colors(node, ctx);
 
   if (tag == "g" || tag == "a") {
     apply_transform(node, ctx);
@@ -444,6 +466,7 @@ void Reader::walk_use(pugi::xml_node node, Context ctx) {
       use_stack_.pop_back();
       return;
     }
+    apply_side_colors(target, inner);
     if (target_tag == "svg") {
       inner.ctm = inner.ctm * Affine::translate(x, y);
       apply_transform(target, inner);
@@ -529,6 +552,10 @@ void Reader::emit(pugi::xml_node node, std::string_view tag, const std::vector<S
     out.source = source;
     out.stroke = ctx.stroke;
     out.fill = ctx.fill;
+    // Left and right are the sides on screen: a mirroring map exchanges them.
+    const bool mirrored = ctx.ctm.determinant() < 0;
+    out.left = mirrored ? ctx.right : ctx.left;
+    out.right = mirrored ? ctx.left : ctx.right;
     out.segments.reserve(sp.segments.size());
     for (const CubicBezier& c : sp.segments) {
       // An affine map of a Bézier curve is the Bézier curve of the mapped control points.
@@ -565,6 +592,7 @@ FeatureSoup Reader::read() {
   if (!apply_style(root, "svg", ctx)) {
     warn_once("root-hidden", "the root element has display:none: nothing is drawn");
   } else {
+    apply_side_colors(root, ctx);
     const std::optional<ViewBox> vb = view_box_of(root);
     const bool sized = vb && vb->width > 0 && vb->height > 0;
     if (sized) ctx.viewport_width = vb->width, ctx.viewport_height = vb->height;
@@ -606,7 +634,8 @@ FeatureSoup Reader::read() {
       soup_.points.push_back({centre, sp.source});
       continue;
     }
-    for (const CubicBezier& c : sp.segments) soup_.curves.push_back({c, sp.source, sp.stroke, sp.fill});
+    for (const CubicBezier& c : sp.segments)
+      soup_.curves.push_back({c, sp.source, sp.stroke, sp.fill, sp.left, sp.right});
   }
   pending_.clear();
   return std::move(soup_);

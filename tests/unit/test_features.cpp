@@ -20,7 +20,7 @@ constexpr double kPi = std::numbers::pi;
 
 svg::FeatureSoup soup_of(const std::vector<CubicBezier>& curves) {
   svg::FeatureSoup s;
-  for (const CubicBezier& c : curves) s.curves.push_back({c, 0, {}, {}});
+  for (const CubicBezier& c : curves) s.curves.push_back({c, 0, {}, {}, {}, {}});
   s.sources.push_back({"path", "", 0, 1});
   return s;
 }
