@@ -173,15 +173,15 @@ SubcommandRunner add_solve_elastic_command(CLI::App& solve) {
       "Hang the drawing's enclosed regions at their top and let gravity pull them down (paper §5.1, Figure 14): "
       "compressible Neo-Hookean elasticity in plane strain, sigma = mu (F - F^-T) + lambda ln(det F) F^-T, P2 "
       "displacement, Newton's method with the exact tangent (CHOLMOD) and a line search on the potential energy. "
-      "Each piece of the body (triangles connected through edges) is clamped (zero displacement) at its border "
-      "points within --hang-band of its topmost point; where that is a single point (a rounded or pointed top) the "
-      "border edges through it are clamped too, so that no piece can swing. Gravity points along +y, which is down "
-      "in the drawing (SVG's y axis points down). The drawing is taken to be d = 1 long (d: its bounding-box "
-      "diagonal) whatever its units, so the same parameters deform every drawing alike; the deformation grows "
-      "with density * gravity / youngs. Prints the Newton iterations (residual relative to the load, total potential "
-      "energy) and their time. The VTU holds the displacement (3 components, z = 0) at the nodes, in the drawing's units; the PNG "
-      "shows |displacement| on the deformed body, over the undeformed one in grey. The paper's set-up: "
-      "`curvemesh solve elastic examples/square-with-hole.svg -o out.vtu --png out.png`.");
+      "Each piece of the body (triangles connected through edges) is clamped (zero displacement) at its border points "
+      "within --hang-band of its topmost point; where these hold no whole border edge (a rounded or pointed top) the "
+      "border edges through the topmost point are clamped too, so that no piece can swing. Gravity points along +y, "
+      "which is down in the drawing (SVG's y axis points down). The drawing is taken to be d = 1 long (d: its "
+      "bounding-box diagonal) whatever its units, so the same parameters deform every drawing alike; the deformation "
+      "grows with density * gravity / youngs. Prints the Newton iterations (residual relative to the load, total "
+      "potential energy) and their time. The VTU holds the displacement (3 components, z = 0) at the nodes, in the "
+      "drawing's units; the PNG shows |displacement| on the deformed body, over the undeformed one in grey. The "
+      "paper's set-up: `curvemesh solve elastic examples/square-with-hole.svg -o out.vtu --png out.png`.");
   add_solve_options(*cmd, args->solve, "inside");
   cmd->add_option("--youngs", args->youngs, "Young's modulus E")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--poisson", args->poisson, "Poisson's ratio nu, in (-1, 0.5)")

@@ -364,23 +364,32 @@ std::vector<char> hang_from_top(const Geometry& geometry, const Space& space, do
     }
   }
   std::vector<char> clamped(space.size(), 0);
-  std::map<int, std::vector<int>> hung;  // per piece, the unknowns within the band
+  std::map<int, int> topmost;  // per piece, its highest border unknown
   for (const auto& [t, e] : border) {
     const auto d = space.dofs(t);
     const int piece = find(t);
-    for (int i : space.edge_local_dofs(e))
-      if (position[d[i]].y() <= top[piece] + band && !clamped[d[i]]) clamped[d[i]] = 1, hung[piece].push_back(d[i]);
-  }
-  for (const auto& [piece, dofs] : hung) {
-    if (dofs.size() != 1) continue;
-    // A single point would let the piece swing about it: clamp the border edges through it.
-    for (const auto& [t, e] : border) {
-      if (find(t) != piece) continue;
-      const auto d = space.dofs(t);
-      const std::vector<int> local = space.edge_local_dofs(e);
-      if (std::none_of(local.begin(), local.end(), [&](int i) { return d[i] == dofs[0]; })) continue;
-      for (int i : local) clamped[d[i]] = 1;
+    for (int i : space.edge_local_dofs(e)) {
+      if (position[d[i]].y() <= top[piece] + band) clamped[d[i]] = 1;
+      auto [it, inserted] = topmost.try_emplace(piece, d[i]);
+      if (position[d[i]].y() < position[it->second].y()) it->second = d[i];
     }
+  }
+  // A piece held by no whole border edge (a rounded or pointed top: a point, or a point and an
+  // edge's middle) could swing about it, or nearly: it also hangs by the border edges through
+  // its topmost point.
+  std::map<int, char> holds_an_edge;
+  for (const auto& [t, e] : border) {
+    const auto d = space.dofs(t);
+    const std::vector<int> local = space.edge_local_dofs(e);
+    if (std::all_of(local.begin(), local.end(), [&](int i) { return clamped[d[i]] != 0; })) holds_an_edge[find(t)] = 1;
+  }
+  for (const auto& [t, e] : border) {
+    const int piece = find(t);
+    if (holds_an_edge[piece]) continue;
+    const auto d = space.dofs(t);
+    const std::vector<int> local = space.edge_local_dofs(e);
+    if (std::none_of(local.begin(), local.end(), [&](int i) { return d[i] == topmost[piece]; })) continue;
+    for (int i : local) clamped[d[i]] = 1;
   }
   return clamped;
 }

@@ -117,10 +117,10 @@ double neo_hookean_energy(const Lame& m, const Eigen::Matrix2d& f);
 Eigen::Matrix2d neo_hookean_stress(const Lame& m, const Eigen::Matrix2d& f);
 Eigen::Matrix2d neo_hookean_stress_derivative(const Lame& m, const Eigen::Matrix2d& f, const Eigen::Matrix2d& df);
 
-// How a body hangs: its boundary unknowns within `band` of the top (smallest y) of each piece of
-// the mesh (triangles connected through edges), plus, where that is a single point (a rounded or
-// pointed top), the unknowns of the boundary edges at that point, so that no piece can swing.
-// One flag per unknown of `space`.
+// How a body hangs: its border unknowns within `band` of the top (smallest y) of each piece of
+// the mesh (triangles connected through edges), plus, where these hold no whole border edge (a
+// rounded or pointed top), the unknowns of the border edges through the piece's topmost point,
+// so that no piece can swing. One flag per unknown of `space`.
 std::vector<char> hang_from_top(const Geometry& geometry, const Space& space, double band);
 
 // The value of the displacement at a point x of the domain (located through the inverse of the

@@ -169,6 +169,24 @@ TEST(Elastic, HangsFromTheTopSideOrFromTheEdgesAtATopCorner) {
   }
 }
 
+TEST(Elastic, HangsARoundedTopByTheEdgesAtItsTopmostPoint) {
+  // The top side bent down away from x = 1/2, more steeply on the left: a band of 0.02 holds the
+  // top corner and the middle of the edge on its right (y = 0.019) only, no whole edge, and
+  // would let the body pivot about them. The two edges through the corner are clamped as well.
+  auto top = [](double x) { return x >= 0.5 ? 0.3 * (x - 0.5) * (x - 0.5) : 0.6 * (x - 0.5) * (x - 0.5); };
+  const io::HighOrderMesh mesh =
+      grid(3, 2, [&](const Vec2& p) { return Vec2(p.x(), p.y() + top(p.x()) * (1 - p.y())); });
+  const Geometry geometry(mesh);
+  const Space space(mesh, 2);
+  const std::vector<char> clamped = hang_from_top(geometry, space, 0.02);
+  const std::vector<Vec2> x = space.positions(geometry);
+  ASSERT_EQ(std::count_if(x.begin(), x.end(), [](const Vec2& p) { return p.y() <= 0.02; }), 2);
+  // Two cells across: the two edges are the whole top side, the unknowns with y < 0.2 (the next
+  // row of the grid is at 0.25 and below).
+  EXPECT_EQ(std::count(clamped.begin(), clamped.end(), 1), 5);
+  for (int i = 0; i < space.size(); ++i) EXPECT_EQ(clamped[i] != 0, x[i].y() < 0.2) << "(" << x[i].transpose() << ")";
+}
+
 TEST(Elastic, NoLoadNoDisplacement) {
   const io::HighOrderMesh mesh = grid(3, 3, bend);
   const Geometry geometry(mesh);
