@@ -25,5 +25,6 @@ Runner add_solve_command(CLI::App& app);
 // The problems under `curvemesh solve`: each registers itself on the `solve` command.
 using SubcommandRunner = std::pair<CLI::App*, Runner>;
 SubcommandRunner add_solve_inflate_command(CLI::App& solve);
+SubcommandRunner add_solve_stokes_command(CLI::App& solve);
 
 }  // namespace curvemesh::app
