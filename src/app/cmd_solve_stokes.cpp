@@ -32,8 +32,9 @@ int run_stokes(const StokesArgs& args) {
   std::vector<char> cut(p->mesh.line_count(), 0);
   for (int l = 0; l < p->mesh.line_count(); ++l)
     cut[l] = p->mesh.line_physical[l] == io::kPhysicalPrimary || p->mesh.line_physical[l] == io::kPhysicalSecondary;
-  const fem::CutMesh open = fem::cut_open(p->mesh, cut);
-  const io::HighOrderMesh& mesh = open.mesh;
+  // Only the nodes of triangles (a straight mesh keeps the cubic one's inner nodes unused), so that
+  // every node of the VTU carries the solution.
+  const io::HighOrderMesh mesh = fem::submesh(fem::cut_open(p->mesh, cut).mesh, std::vector<char>(p->mesh.triangle_count(), 1));
   const fem::Geometry geometry(mesh);
   const fem::Space velocity(mesh, 2), pressure(mesh, 1);
 
@@ -118,13 +119,20 @@ SubcommandRunner add_solve_stokes_command(CLI::App& solve) {
       "the mesh is cut open along. Regions closed off by curves hold fluid at rest. Writes velocity, pressure and "
       "speed at the nodes; the picture shows the speed.");
   add_solve_options(*cmd, args->solve, "all");
+  const CLI::Validator positive_finite(
+      [](std::string& text) {
+        double value = 0;
+        if (CLI::detail::lexical_cast(text, value) && value > 0 && std::isfinite(value)) return std::string();
+        return "must be a positive finite number, not " + text;
+      },
+      "POSITIVE");
   cmd->add_option("--viscosity", args->stokes.viscosity, "the fluid's viscosity v (not the feature option --mu)")
       ->capture_default_str()
-      ->check(CLI::Range(1e-12, 1e12));
+      ->check(positive_finite);
   cmd->add_option("--inflow-speed", args->inflow_speed,
                   "the inflow's speed at the middle of the box's left side (the top of the parabolic profile)")
       ->capture_default_str()
-      ->check(CLI::Range(1e-12, 1e12));
+      ->check(positive_finite);
   return {cmd, [args] { return run_stokes(*args); }};
 }
 
