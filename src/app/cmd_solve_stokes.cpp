@@ -21,6 +21,7 @@ struct StokesArgs {
   SolveOptions solve;
   fem::StokesOptions stokes;
   double inflow_speed = 1;
+  double colour_top = 0;  // the speed at the top of the picture's colour map; 0: the highest speed
 };
 
 int run_stokes(const StokesArgs& args) {
@@ -31,10 +32,12 @@ int run_stokes(const StokesArgs& args) {
   // own velocity and pressure unknowns (a thin plate holds a pressure jump).
   std::vector<char> cut(p->mesh.line_count(), 0);
   for (int l = 0; l < p->mesh.line_count(); ++l)
-    cut[l] = p->mesh.line_physical[l] == io::kPhysicalPrimary || p->mesh.line_physical[l] == io::kPhysicalSecondary;
+    cut[l] = p->mesh.line_physical[l] == io::kPhysicalPrimary ||
+             p->mesh.line_physical[l] == io::kPhysicalSecondary;
   // Only the nodes of triangles (a straight mesh keeps the cubic one's inner nodes unused), so that
   // every node of the VTU carries the solution.
-  const io::HighOrderMesh mesh = fem::submesh(fem::cut_open(p->mesh, cut).mesh, std::vector<char>(p->mesh.triangle_count(), 1));
+  const io::HighOrderMesh mesh =
+      fem::submesh(fem::cut_open(p->mesh, cut).mesh, std::vector<char>(p->mesh.triangle_count(), 1));
   const fem::Geometry geometry(mesh);
   const fem::Space velocity(mesh, 2), pressure(mesh, 1);
 
@@ -58,15 +61,18 @@ int run_stokes(const StokesArgs& args) {
         continue;
       }
       const fem::Vec2 a = mesh.nodes[mesh.line(l)[0]], b = mesh.nodes[mesh.line(l)[1]];
-      auto on = [tol](double u, double v, double side) { return std::abs(u - side) <= tol && std::abs(v - side) <= tol; };
+      auto on = [tol](double u, double v, double side) {
+        return std::abs(u - side) <= tol && std::abs(v - side) <= tol;
+      };
       if (on(a.x(), b.x(), box.min.x()))
         inflow.edges.emplace_back(t, e);
       else if (!on(a.x(), b.x(), box.max.x()))
         walls.edges.emplace_back(t, e);  // top or bottom; the right side is the natural outflow
     }
   if (inflow.edges.empty())
-    std::cerr << "curvemesh: " << args.solve.input
-              << ": warning: the domain does not reach the box's left side; with no inflow the fluid is at rest\n";
+    std::cerr
+        << "curvemesh: " << args.solve.input
+        << ": warning: the domain does not reach the box's left side; with no inflow the fluid is at rest\n";
 
   fem::StokesResult r;
   try {
@@ -85,17 +91,21 @@ int run_stokes(const StokesArgs& args) {
   // The highest speed at the velocity unknowns (corners and edge midpoints), which the straight
   // and the cubic map of a mesh both have: the pictures of the two share a colour scale.
   double top = 0;
-  for (int i = 0; i < velocity.size(); ++i) top = std::max(top, std::hypot(r.velocity[2 * i], r.velocity[2 * i + 1]));
+  for (int i = 0; i < velocity.size(); ++i)
+    top = std::max(top, std::hypot(r.velocity[2 * i], r.velocity[2 * i + 1]));
   std::printf(
-      "stokes: %d velocity unknowns (P2, 2 components; %d given), %d pressure unknowns (P1; held: %d for closed "
-      "regions, %d for local modes), %d triangles (%s map); assembly %.3f s, solve %.3f s; highest speed %.6g\n",
+      "stokes: %d velocity unknowns (P2, 2 components; %d given), %d pressure unknowns (P1; held: %d for "
+      "closed "
+      "regions, %d for local modes), %d triangles (%s map); assembly %.3f s, solve %.3f s; highest speed "
+      "%.6g\n",
       r.velocity_unknowns, r.fixed_velocities, r.pressure_unknowns, r.closed_parts, r.dependent_pressures,
-      mesh.triangle_count(),
-      mesh.order == 1 ? "straight" : "cubic", r.assembly_seconds, r.solve_seconds, top);
+      mesh.triangle_count(), mesh.order == 1 ? "straight" : "cubic", r.assembly_seconds, r.solve_seconds,
+      top);
 
   std::optional<fem::Image> picture;
   if (!args.solve.output_png.empty()) {
-    const double scale = top > 0 ? 1 / top : 0.0;
+    const double colour_top = args.colour_top > 0 ? args.colour_top : top;
+    const double scale = colour_top > 0 ? 1 / colour_top : 0.0;
     picture = fem::rasterize(geometry, p->view, args.solve.width, [&](int t, const fem::Vec2& xi) {
       const double u = fem::value_at(velocity, r.velocity, t, xi, 2, 0);
       const double v = fem::value_at(velocity, r.velocity, t, xi, 2, 1);
@@ -112,11 +122,15 @@ SubcommandRunner add_solve_stokes_command(CLI::App& solve) {
   auto args = std::make_shared<StokesArgs>();
   CLI::App* cmd = solve.add_subcommand(
       "stokes",
-      "Viscous (Stokes) flow through the drawing (paper §5.1): -v lap u + grad p = 0, div u = 0 (v: --viscosity) "
-      "with Taylor-Hood elements (P2 velocity, P1 pressure; a saddle-point system solved by UMFPACK). The fluid "
+      "Viscous (Stokes) flow through the drawing (paper §5.1): -v lap u + grad p = 0, div u = 0 (v: "
+      "--viscosity) "
+      "with Taylor-Hood elements (P2 velocity, P1 pressure; a saddle-point system solved by UMFPACK). The "
+      "fluid "
       "enters at the box's left side with a parabolic profile and leaves at the right side (do-nothing "
-      "condition); it sticks to the top and bottom sides and to both sides of every curve of the drawing, which "
-      "the mesh is cut open along. Regions closed off by curves hold fluid at rest. Writes velocity, pressure and "
+      "condition); it sticks to the top and bottom sides and to both sides of every curve of the drawing, "
+      "which "
+      "the mesh is cut open along. Regions closed off by curves hold fluid at rest. Writes velocity, "
+      "pressure and "
       "speed at the nodes; the picture shows the speed.");
   add_solve_options(*cmd, args->solve, "all");
   const CLI::Validator positive_finite(
@@ -126,12 +140,19 @@ SubcommandRunner add_solve_stokes_command(CLI::App& solve) {
         return "must be a positive finite number, not " + text;
       },
       "POSITIVE");
-  cmd->add_option("--viscosity", args->stokes.viscosity, "the fluid's viscosity v (not the feature option --mu)")
+  cmd->add_option("--viscosity", args->stokes.viscosity,
+                  "the fluid's viscosity v (not the feature option --mu)")
       ->capture_default_str()
       ->check(positive_finite);
-  cmd->add_option("--inflow-speed", args->inflow_speed,
-                  "the inflow's speed at the middle of the box's left side (the top of the parabolic profile)")
+  cmd->add_option(
+         "--inflow-speed", args->inflow_speed,
+         "the inflow's speed at the middle of the box's left side (the top of the parabolic profile)")
       ->capture_default_str()
+      ->check(positive_finite);
+  cmd->add_option(
+         "--colour-top", args->colour_top,
+         "the speed drawn with the colour map's top colour in the picture (faster is drawn the same); "
+         "default: the highest speed of the solution. Give two pictures the same to compare them")
       ->check(positive_finite);
   return {cmd, [args] { return run_stokes(*args); }};
 }

@@ -70,7 +70,8 @@ std::vector<int> dependent_pressures(const SparseMatrix& b, const Dirichlet& dir
   const int np = static_cast<int>(b.rows());
   std::vector<int> column(np, -1), pressure_of;  // held pressures have no column
   for (int j = 0; j < np; ++j)
-    if (!dirichlet.fixed[2 * nv + j]) column[j] = static_cast<int>(pressure_of.size()), pressure_of.push_back(j);
+    if (!dirichlet.fixed[2 * nv + j])
+      column[j] = static_cast<int>(pressure_of.size()), pressure_of.push_back(j);
   const int nc = static_cast<int>(pressure_of.size());
   // Bᵀ's columns as lists of (free velocity, value), normalized.
   std::vector<std::vector<std::pair<int, double>>> columns(nc);
@@ -117,7 +118,8 @@ std::vector<int> dependent_pressures(const SparseMatrix& b, const Dirichlet& dir
       qr.setPivotThreshold(kRankThreshold);
       qr.compute(m);
       if (qr.info() != Eigen::Success) continue;
-      for (int k = static_cast<int>(qr.rank()); k < n; ++k) out.push_back(pressure_of[cols[qr.colsPermutation().indices()[k]]]);
+      for (int k = static_cast<int>(qr.rank()); k < n; ++k)
+        out.push_back(pressure_of[cols[qr.colsPermutation().indices()[k]]]);
       continue;
     }
     Eigen::MatrixXd m = Eigen::MatrixXd::Zero(static_cast<int>(row.size()), n);
@@ -125,7 +127,8 @@ std::vector<int> dependent_pressures(const SparseMatrix& b, const Dirichlet& dir
       for (const auto& [v, x] : columns[cols[k]]) m(row[v], k) = x;
     Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(m);
     qr.setThreshold(kRankThreshold);
-    for (int k = static_cast<int>(qr.rank()); k < n; ++k) out.push_back(pressure_of[cols[qr.colsPermutation().indices()[k]]]);
+    for (int k = static_cast<int>(qr.rank()); k < n; ++k)
+      out.push_back(pressure_of[cols[qr.colsPermutation().indices()[k]]]);
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -171,10 +174,12 @@ StokesResult stokes(const Geometry& geometry, const Space& velocity, const Space
     const auto dp = pressure.dofs(t);
     for (int i = 0; i < 6; ++i)
       for (int k = 0; k < 6; ++k)
-        for (int c = 0; c < 2; ++c) viscous_triplets.emplace_back(2 * dv[i] + c, 2 * dv[k] + c, viscous(i, k));
+        for (int c = 0; c < 2; ++c)
+          viscous_triplets.emplace_back(2 * dv[i] + c, 2 * dv[k] + c, viscous(i, k));
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 6; ++i)
-        for (int c = 0; c < 2; ++c) divergence_triplets.emplace_back(dp[j], 2 * dv[i] + c, divergence(j, 2 * i + c));
+        for (int c = 0; c < 2; ++c)
+          divergence_triplets.emplace_back(dp[j], 2 * dv[i] + c, divergence(j, 2 * i + c));
   }
   SparseMatrix b(np, 2 * nv);
   b.setFromTriplets(divergence_triplets.begin(), divergence_triplets.end());

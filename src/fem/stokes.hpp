@@ -41,13 +41,14 @@ struct StokesOptions {
 };
 
 struct StokesResult {
-  Eigen::VectorXd velocity;  // per unknown i of the P2 space: x at 2i, y at 2i + 1
-  Eigen::VectorXd pressure;  // per unknown of the P1 space
-  int velocity_unknowns = 0;  // 2 × the P2 space's size
-  int pressure_unknowns = 0;  // the P1 space's size
-  int fixed_velocities = 0;   // velocity unknowns held by the conditions
-  int closed_parts = 0;       // connected parts with no natural border, one pressure held in each
+  Eigen::VectorXd velocity;     // per unknown i of the P2 space: x at 2i, y at 2i + 1
+  Eigen::VectorXd pressure;     // per unknown of the P1 space
+  int velocity_unknowns = 0;    // 2 × the P2 space's size
+  int pressure_unknowns = 0;    // the P1 space's size
+  int fixed_velocities = 0;     // velocity unknowns held by the conditions
+  int closed_parts = 0;         // connected parts with no natural border, one pressure held in each
   int dependent_pressures = 0;  // more pressures held: local modes the velocity cannot see
+  // Assembly includes finding the pressures to hold; the solve, a second one if the first fails.
   double assembly_seconds = 0, solve_seconds = 0;
 };
 

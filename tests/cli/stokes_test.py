@@ -123,8 +123,8 @@ for name, extra in (("curved", []), ("linear", ["--linear"])):
     inlet = points_at(points, msh.points[sorted(left_nodes), :2])
     y = (points[inlet, 1] - box_lo[1]) / (box_hi[1] - box_lo[1])
     profile = 2 * 4 * y * (1 - y)
-    check(f"{name}: parabolic inflow on the left side",
-          len(inlet) > 0 and np.allclose(u[inlet, 0], profile, rtol=0, atol=1e-9) and np.all(np.abs(u[inlet, 1]) <= 1e-9),
+    inflow_ok = np.allclose(u[inlet, 0], profile, rtol=0, atol=1e-9) and np.all(np.abs(u[inlet, 1]) <= 1e-9)
+    check(f"{name}: parabolic inflow on the left side", len(inlet) > 0 and inflow_ok,
           f"largest difference {np.abs(u[inlet, 0] - profile).max() if len(inlet) else None}")
     # Inside the rounded rectangle, away from the circle and the ellipse: closed off by curves.
     pocket = np.nonzero(np.linalg.norm(points - np.array([60.0, 60.0]), axis=1) <= 15)[0]
@@ -136,7 +136,8 @@ if "curved" in results and "linear" in results:
     # The same mesh with another map: the straight triangles' nodes are the cubic ones' corners,
     # and the flows differ there.
     mc, ml = results["curved"], results["linear"]
-    check("linear: fewer nodes (corners only)", len(ml.points) < len(mc.points), f"{len(ml.points)} vs {len(mc.points)}")
+    check("linear: fewer nodes (corners only)", len(ml.points) < len(mc.points),
+          f"{len(ml.points)} vs {len(mc.points)}")
     corner_of = {tuple(x): i for i, x in enumerate(mc.points[:, :2].tolist())}
     found = [corner_of.get(tuple(x)) for x in ml.points[:, :2].tolist()]
     check("linear: its nodes are nodes of the cubic mesh", all(i is not None for i in found))
@@ -163,6 +164,12 @@ if r.returncode == 0:
     check("empty box: Poiseuille pressure", np.abs(p - exact_p).max() <= 1e-10 * exact_p.max(),
           f"{np.abs(p - exact_p).max()} of {exact_p.max()}")
 
+# The colour scale of the picture: another top colour, another picture.
+r = run("solve", "stokes", drawing, "--png", path("scaled.png"), "--width", "240", "--inflow-speed", "2",
+        "--colour-top", "100")
+with open(path("curved.png"), "rb") as a, open(path("scaled.png"), "rb") as b:
+    check("--colour-top: another picture", r.returncode == 0 and a.read() != b.read(), r.stderr)
+
 # Deterministic: the same VTU again, byte for byte.
 r = run("solve", "stokes", drawing, "-o", path("again.vtu"), "--inflow-speed", "2")
 with open(path("curved.vtu"), "rb") as a, open(path("again.vtu"), "rb") as b:
@@ -179,7 +186,8 @@ check("garbage SVG: exit 1", r.returncode == 1, f"{r.returncode}: {r.stderr}")
 check("garbage SVG: message", "garbage.svg" in r.stderr and len(r.stderr.strip()) > 20, r.stderr)
 check("garbage SVG: no output", not os.path.exists(path("x.vtu")))
 # Bad options: usage errors.
-for option in (["--viscosity", "0"], ["--viscosity", "inf"], ["--inflow-speed", "-1"], ["--domain", "nowhere"]):
+for option in (["--viscosity", "0"], ["--viscosity", "inf"], ["--inflow-speed", "-1"], ["--colour-top", "0"],
+               ["--domain", "nowhere"]):
     r = run("solve", "stokes", drawing, "-o", path("x.vtu"), *option)
     check(f"{' '.join(option)}: exit 2", r.returncode == 2 and len(r.stderr) > 0, f"{r.returncode}: {r.stderr}")
 

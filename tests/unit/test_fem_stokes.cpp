@@ -22,8 +22,12 @@ namespace {
 
 constexpr double kLength = 3, kHeight = 1, kViscosity = 0.7, kGradient = 2;
 
-Vec2 poiseuille_velocity(const Vec2& x) { return {kGradient / (2 * kViscosity) * x.y() * (kHeight - x.y()), 0}; }
-double poiseuille_pressure(const Vec2& x) { return kGradient * (kLength - x.x()); }
+Vec2 poiseuille_velocity(const Vec2& x) {
+  return {kGradient / (2 * kViscosity) * x.y() * (kHeight - x.y()), 0};
+}
+double poiseuille_pressure(const Vec2& x) {
+  return kGradient * (kLength - x.x());
+}
 // ∫₀ᴴ u_x dy.
 constexpr double kFlux = kGradient * kHeight * kHeight * kHeight / (12 * kViscosity);
 
@@ -33,7 +37,8 @@ constexpr double kFlux = kGradient * kHeight * kHeight * kHeight / (12 * kViscos
 // which vanishes on the border: the domain stays the rectangle with straight sides, and with
 // bend ≠ 0 the cubic triangles are curved (the interpolant of a smooth non-affine map) while
 // the straight ones are a less regular triangulation.
-io::HighOrderMesh channel(int nx, int ny, int order, double bend = 0, double x0 = 0, double length = kLength) {
+io::HighOrderMesh channel(int nx, int ny, int order, double bend = 0, double x0 = 0,
+                          double length = kLength) {
   io::HighOrderMesh m;
   m.order = order;
   const double hx = length / nx, hy = kHeight / ny;
@@ -74,12 +79,14 @@ io::HighOrderMesh channel(int nx, int ny, int order, double bend = 0, double x0 
         triangle(a, b, d), triangle(b, c, d);
     }
   for (Vec2& x : m.nodes)
-    x += bend * std::sin(M_PI * (x.x() - x0) / length) * std::sin(M_PI * x.y() / kHeight) * Vec2(1, 1) / std::sqrt(2.0);
+    x += bend * std::sin(M_PI * (x.x() - x0) / length) * std::sin(M_PI * x.y() / kHeight) * Vec2(1, 1) /
+         std::sqrt(2.0);
   return m;
 }
 
 // The border edges of the mesh whose two corners and midpoint satisfy `where`.
-std::vector<std::pair<int, int>> edges_where(const io::HighOrderMesh& mesh, const std::function<bool(const Vec2&)>& where) {
+std::vector<std::pair<int, int>> edges_where(const io::HighOrderMesh& mesh,
+                                             const std::function<bool(const Vec2&)>& where) {
   std::vector<std::pair<int, int>> out;
   for (const auto& [t, e] : boundary_edges(mesh)) {
     const auto tri = mesh.triangle(t);
@@ -95,7 +102,8 @@ std::vector<VelocityCondition> poiseuille_conditions(const io::HighOrderMesh& me
   VelocityCondition inflow{edges_where(mesh, [x0](const Vec2& x) { return std::abs(x.x() - x0) < 1e-12; }),
                            poiseuille_velocity};
   VelocityCondition walls{
-      edges_where(mesh, [](const Vec2& x) { return std::abs(x.y()) < 1e-12 || std::abs(x.y() - kHeight) < 1e-12; }),
+      edges_where(mesh,
+                  [](const Vec2& x) { return std::abs(x.y()) < 1e-12 || std::abs(x.y() - kHeight) < 1e-12; }),
       [](const Vec2&) { return Vec2(0, 0); }};
   return {inflow, walls};
 }
@@ -104,7 +112,8 @@ struct Errors {
   double velocity = 0, pressure = 0;  // largest difference at the unknowns, relative to the largest value
 };
 
-Errors nodal_errors(const Geometry& geometry, const Space& velocity, const Space& pressure, const StokesResult& r) {
+Errors nodal_errors(const Geometry& geometry, const Space& velocity, const Space& pressure,
+                    const StokesResult& r) {
   Errors e;
   double umax = 0, pmax = 0;
   const auto xv = velocity.positions(geometry);
@@ -151,12 +160,14 @@ std::pair<Eigen::VectorXd, double> divergence_moments(const Geometry& geometry, 
 }
 
 // ∫ u_h · n over the border edges with both corners at x = x_side (n = +x).
-double flux_through(const Geometry& geometry, const Space& velocity, const Eigen::VectorXd& u, double x_side) {
+double flux_through(const Geometry& geometry, const Space& velocity, const Eigen::VectorXd& u,
+                    double x_side) {
   const io::HighOrderMesh& mesh = geometry.mesh();
   const Quadrature line = interval_quadrature(10);
   const std::array<Vec2, 3> corners = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
   double flux = 0;
-  for (const auto& [t, e] : edges_where(mesh, [x_side](const Vec2& x) { return std::abs(x.x() - x_side) < 1e-12; })) {
+  for (const auto& [t, e] :
+       edges_where(mesh, [x_side](const Vec2& x) { return std::abs(x.x() - x_side) < 1e-12; })) {
     const auto d = velocity.dofs(t);
     const Vec2 a = corners[e], b = corners[(e + 1) % 3];
     for (int k = 0; k < line.size(); ++k) {
@@ -200,7 +211,8 @@ TEST(StokesTest, PoiseuilleFlowIsExactOnACubicMapThatIsAffine) {
   ASSERT_EQ(mesh.order, 3);
   const Geometry geometry(mesh);
   const Space velocity(mesh, 2), pressure(mesh, 1);
-  const Errors e = nodal_errors(geometry, velocity, pressure, solve_poiseuille(mesh, geometry, velocity, pressure));
+  const Errors e =
+      nodal_errors(geometry, velocity, pressure, solve_poiseuille(mesh, geometry, velocity, pressure));
   EXPECT_LT(e.velocity, 1e-10);
   EXPECT_LT(e.pressure, 1e-10);
 }
@@ -210,7 +222,8 @@ TEST(StokesTest, PoiseuilleFlowIsExactUnderViscosityAndSpeedScaling) {
   const io::HighOrderMesh mesh = channel(4, 2, 1);
   const Geometry geometry(mesh);
   const Space velocity(mesh, 2), pressure(mesh, 1);
-  const StokesResult r1 = stokes(geometry, velocity, pressure, poiseuille_conditions(mesh), {.viscosity = kViscosity});
+  const StokesResult r1 =
+      stokes(geometry, velocity, pressure, poiseuille_conditions(mesh), {.viscosity = kViscosity});
   const StokesResult r2 =
       stokes(geometry, velocity, pressure, poiseuille_conditions(mesh), {.viscosity = 2 * kViscosity});
   EXPECT_LT((r2.velocity - r1.velocity).cwiseAbs().maxCoeff(), 1e-12);
@@ -241,7 +254,8 @@ TEST(StokesTest, CurvedMapConservesMassAndConverges) {
     const auto [moments, scale] = divergence_moments(geometry, velocity, pressure, r.velocity);
     EXPECT_LT(moments.cwiseAbs().maxCoeff(), 1e-13 * scale) << "level " << level;
     // Σ q_j = 1, so the moments sum to ∫ div u_h = the flux out minus the flux in.
-    EXPECT_NEAR(flux_through(geometry, velocity, r.velocity, kLength), kFlux, 1e-12 * kFlux) << "level " << level;
+    EXPECT_NEAR(flux_through(geometry, velocity, r.velocity, kLength), kFlux, 1e-12 * kFlux)
+        << "level " << level;
     Eigen::VectorXd ux(velocity.size()), uy(velocity.size());
     for (int i = 0; i < velocity.size(); ++i) ux[i] = r.velocity[2 * i], uy[i] = r.velocity[2 * i + 1];
     h.push_back(1.0 / level);
@@ -321,7 +335,8 @@ TEST(StokesTest, PocketOfTwoTrianglesHoldsItsUnseenPressures) {
   const Space velocity(mesh, 2), pressure(mesh, 1);
   ASSERT_EQ(pressure.size(), 4);
   ASSERT_EQ(velocity.size(), 9);
-  const StokesResult r = stokes(geometry, velocity, pressure, {{boundary_edges(mesh), [](const Vec2&) { return Vec2(0, 0); }}});
+  const StokesResult r =
+      stokes(geometry, velocity, pressure, {{boundary_edges(mesh), [](const Vec2&) { return Vec2(0, 0); }}});
   EXPECT_EQ(r.fixed_velocities, 16);
   EXPECT_EQ(r.closed_parts, 1);
   EXPECT_EQ(r.dependent_pressures, 1);
@@ -373,7 +388,8 @@ TEST(StokesTest, PoiseuilleVelocityIsExactWithTheWholeBorderGiven) {
     const auto xp = pressure.positions(geometry);
     EXPECT_EQ(r.pressure[0], 0.0);
     for (int j = 0; j < pressure.size(); ++j)
-      EXPECT_NEAR(r.pressure[j], poiseuille_pressure(xp[j]) - poiseuille_pressure(xp[0]), 1e-10 * kGradient * kLength);
+      EXPECT_NEAR(r.pressure[j], poiseuille_pressure(xp[j]) - poiseuille_pressure(xp[0]),
+                  1e-10 * kGradient * kLength);
   }
 }
 
