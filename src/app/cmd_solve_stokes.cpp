@@ -89,15 +89,14 @@ int run_stokes(const StokesArgs& args) {
     speed_at[i] = std::hypot(uv[2 * i], uv[2 * i + 1]);
   }
   // The highest speed at the velocity unknowns (corners and edge midpoints), which the straight
-  // and the cubic map of a mesh both have: the pictures of the two share a colour scale.
+  // and the cubic map of a mesh both have, rather than at the nodes, which differ between them.
   double top = 0;
   for (int i = 0; i < velocity.size(); ++i)
     top = std::max(top, std::hypot(r.velocity[2 * i], r.velocity[2 * i + 1]));
   std::printf(
-      "stokes: %d velocity unknowns (P2, 2 components; %d given), %d pressure unknowns (P1; held: %d for "
-      "closed "
-      "regions, %d for local modes), %d triangles (%s map); assembly %.3f s, solve %.3f s; highest speed "
-      "%.6g\n",
+      "stokes: %d velocity unknowns (P2, 2 components; %d given), %d pressure unknowns "
+      "(P1; held: %d for closed regions, %d for local modes), %d triangles (%s map); "
+      "assembly %.3f s, solve %.3f s; highest speed %.6g\n",
       r.velocity_unknowns, r.fixed_velocities, r.pressure_unknowns, r.closed_parts, r.dependent_pressures,
       mesh.triangle_count(), mesh.order == 1 ? "straight" : "cubic", r.assembly_seconds, r.solve_seconds,
       top);
