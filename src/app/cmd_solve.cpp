@@ -17,6 +17,7 @@ Runner add_solve_command(CLI::App& app) {
   std::vector<SubcommandRunner> problems;
   problems.push_back(add_solve_inflate_command(*cmd));
   problems.push_back(add_solve_elastic_command(*cmd));
+  problems.push_back(add_solve_stokes_command(*cmd));
   return [problems] {
     for (const auto& [sub, run] : problems)
       if (sub->parsed()) return run();

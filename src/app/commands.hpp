@@ -27,5 +27,6 @@ Runner add_diffuse_command(CLI::App& app);
 using SubcommandRunner = std::pair<CLI::App*, Runner>;
 SubcommandRunner add_solve_inflate_command(CLI::App& solve);
 SubcommandRunner add_solve_elastic_command(CLI::App& solve);
+SubcommandRunner add_solve_stokes_command(CLI::App& solve);
 
 }  // namespace curvemesh::app
