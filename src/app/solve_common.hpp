@@ -43,7 +43,8 @@ struct Problem {
 // and returns nothing, with the exit code in *exit_code.
 std::optional<Problem> prepare_problem(const SolveOptions& options, int* exit_code);
 
-// Writes the VTU (mesh with point arrays) and the PNG (when asked). Returns an exit code.
+// Writes the VTU (the triangles, the nodes they use and the point arrays there) and the PNG
+// (when asked). Returns an exit code.
 int write_outputs(const SolveOptions& options, const io::HighOrderMesh& mesh,
                   const std::vector<io::VtuPointArray>& arrays, const fem::Image* picture);
 

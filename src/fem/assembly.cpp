@@ -96,7 +96,9 @@ Eigen::VectorXd solve(const SparseMatrix& a, const Eigen::VectorXd& b, const Dir
   reduced.setFromTriplets(triplets.begin(), triplets.end());
   Eigen::VectorXd y;
   if (symmetric_positive) {
-    Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> chol;
+    // LLᵀ always: CHOLMOD's automatic mode may choose LDLᵀ, which factors an indefinite matrix
+    // without complaint; LLᵀ reports it.
+    Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> chol;
     chol.compute(reduced);
     if (chol.info() != Eigen::Success) throw std::runtime_error("CHOLMOD could not factor the system (not positive definite)");
     y = chol.solve(rhs);

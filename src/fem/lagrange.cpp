@@ -25,14 +25,16 @@ void monomials(int order, const Vec2& xi, Eigen::VectorXd& m, Eigen::MatrixX2d& 
   const int n = (order + 1) * (order + 2) / 2;
   m.resize(n);
   dm.resize(n, 2);
-  auto pw = [](double x, int k) { return k <= 0 ? 1.0 : std::pow(x, k); };
+  // Powers by multiplication (std::pow dominated the pixel-by-pixel inverse maps of pictures).
+  const double px[4] = {1, xi.x(), xi.x() * xi.x(), xi.x() * xi.x() * xi.x()};
+  const double py[4] = {1, xi.y(), xi.y() * xi.y(), xi.y() * xi.y() * xi.y()};
   int i = 0;
   for (int total = 0; total <= order; ++total)
     for (int a = total; a >= 0; --a, ++i) {
       const int b = total - a;
-      m(i) = pw(xi.x(), a) * pw(xi.y(), b);
-      dm(i, 0) = a == 0 ? 0.0 : a * pw(xi.x(), a - 1) * pw(xi.y(), b);
-      dm(i, 1) = b == 0 ? 0.0 : b * pw(xi.x(), a) * pw(xi.y(), b - 1);
+      m(i) = px[a] * py[b];
+      dm(i, 0) = a == 0 ? 0.0 : a * px[a - 1] * py[b];
+      dm(i, 1) = b == 0 ? 0.0 : b * px[a] * py[b - 1];
     }
 }
 

@@ -61,6 +61,28 @@ Image rasterize(const Geometry& geometry, const geometry::Box2& view, int width,
     // its nodes in a valid triangle.
     Vec2 lo = mesh.nodes[mesh.triangle(t)[0]], hi = lo;
     for (int i : mesh.triangle(t)) lo = lo.cwiseMin(mesh.nodes[i]), hi = hi.cwiseMax(mesh.nodes[i]);
+    // Beyond a straight side by more than twice its inner nodes' distance from it, a point is
+    // outside the curved triangle (a cubic edge through nodes d off its chord strays at most
+    // about 1.3 d): such pixels skip the inverse map.
+    const auto tri = mesh.triangle(t);
+    std::array<double, 3> margin{0, 0, 0};
+    const int per_edge = mesh.order - 1;
+    for (int e = 0; e < 3 && per_edge > 0; ++e) {
+      const Vec2 a = mesh.nodes[tri[e]], b = mesh.nodes[tri[(e + 1) % 3]];
+      const Vec2 n = Vec2(b.y() - a.y(), a.x() - b.x()).normalized();
+      for (int k = 0; k < per_edge; ++k)
+        margin[e] = std::max(margin[e], 2 * std::abs(n.dot(mesh.nodes[tri[3 + per_edge * e + k]] - a)));
+    }
+    auto far_outside = [&](const Vec2& x) {
+      // Counter-clockwise corners: the inside is to the left of each side.
+      for (int e = 0; e < 3; ++e) {
+        const Vec2 a = mesh.nodes[tri[e]], b = mesh.nodes[tri[(e + 1) % 3]];
+        const Vec2 d = b - a;
+        const double left = (d.x() * (x.y() - a.y()) - d.y() * (x.x() - a.x())) / d.norm();
+        if (left < -margin[e] - 1e-9 * d.norm()) return true;
+      }
+      return false;
+    };
     const Vec2 grow = (hi - lo) * (mesh.order > 1 ? 0.25 : 0.0);
     lo -= grow, hi += grow;
     const int x0 = std::max(0, static_cast<int>(std::floor((lo.x() - view.min.x()) / pixel - 0.5)));
@@ -71,6 +93,7 @@ Image rasterize(const Geometry& geometry, const geometry::Box2& view, int width,
       for (int px = x0; px <= x1; ++px) {
         if (done[std::size_t(py) * img.width + px]) continue;
         const Vec2 x(view.min.x() + (px + 0.5) * pixel, view.min.y() + (py + 0.5) * pixel);
+        if (far_outside(x)) continue;
         Vec2 xi;
         if (!geometry.inverse(t, x, xi)) continue;
         if (xi.x() < -tol || xi.y() < -tol || xi.x() + xi.y() > 1 + tol) continue;
