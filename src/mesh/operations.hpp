@@ -44,9 +44,11 @@ bool project_vertex(TriMesh& mesh, const Constraints& constraints, int v, double
 // triangles has two other tagged edges a–x and x–b that lie inside the ε-envelope themselves: the
 // sliver between the secondary chord and that path could never be improved, and the path stands
 // for the secondary input there, within ε as the invariant asks. Secondary vertices left without
-// secondary edges become free. Where the path's edges are not tagged yet, but x is on no primary
-// curve or box side, a–b is that triangle's longest edge and the path is inside the envelope, the
-// tag moves onto the path (x becomes secondary if it was free). Returns true if anything changed.
+// secondary edges become free. Where the path's edges are not tagged yet, but x is on no box
+// side (nor a primary vertex still off its curve), lies on a–b to round-off (height below
+// 1e-9·|ab|: a flat triangle), a–b is that triangle's longest edge and the path is inside the
+// envelope, the tag moves onto the path (x becomes secondary if it was free, fixed if it was
+// primary: a crossing). Returns true if anything changed.
 bool release_secondary_edge(TriMesh& mesh, const Constraints& constraints, int a, int b);
 
 // Gives a vertex with an exact (rational) position a double position: its nearest double, or,

@@ -324,7 +324,22 @@ TEST(MeshOperations, SecondaryChordMovesOntoAnUntaggedApexInsideTheEnvelope) {
     EXPECT_EQ(f.mesh.feature(0, 1), nullptr);
     EXPECT_FALSE(f.mesh.structure_error());
   }
-  // Beyond the envelope, or with x on a primary curve, nothing moves.
+  // A primary x on its curve becomes a crossing (fixed); one still off its curve stays as it is.
+  Fixture crossing = chord_beside_path(1e-13);
+  crossing.mesh.clear_feature(0, 2);
+  crossing.mesh.clear_feature(2, 1);
+  VertexTag on;
+  on.kind = VertexKind::primary;
+  crossing.mesh.set_tag(2, on);
+  EXPECT_TRUE(release_secondary_edge(crossing.mesh, crossing.constraints, 0, 1));
+  EXPECT_EQ(crossing.mesh.tag(2).kind, VertexKind::fixed);
+  // Not flat (1e-6 above a chord of length 1, inside ε all the same): nothing moves.
+  Fixture raised = chord_beside_path(1e-6);
+  raised.mesh.clear_feature(0, 2);
+  raised.mesh.clear_feature(2, 1);
+  raised.mesh.set_tag(2, VertexTag{});
+  EXPECT_FALSE(release_secondary_edge(raised.mesh, raised.constraints, 0, 1));
+  // Beyond the envelope, or with x off its primary curve, nothing moves.
   Fixture far = chord_beside_path(0.01);
   far.mesh.clear_feature(0, 2);
   far.mesh.clear_feature(2, 1);
@@ -333,9 +348,10 @@ TEST(MeshOperations, SecondaryChordMovesOntoAnUntaggedApexInsideTheEnvelope) {
   Fixture primary = chord_beside_path(1e-13);
   primary.mesh.clear_feature(0, 2);
   primary.mesh.clear_feature(2, 1);
-  VertexTag on_curve;
-  on_curve.kind = VertexKind::primary;
-  primary.mesh.set_tag(2, on_curve);
+  VertexTag off_curve;
+  off_curve.kind = VertexKind::primary;
+  off_curve.on_curve = false;
+  primary.mesh.set_tag(2, off_curve);
   EXPECT_FALSE(release_secondary_edge(primary.mesh, primary.constraints, 0, 1));
 }
 
