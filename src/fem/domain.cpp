@@ -1,4 +1,5 @@
 #include "fem/domain.hpp"
+#include "fem/union_find.hpp"
 
 #include <algorithm>
 #include <map>
@@ -22,19 +23,6 @@ std::map<EdgeKey, std::vector<std::pair<int, int>>> edge_triangles(const io::Hig
   }
   return out;
 }
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  }
-  void unite(int a, int b) {
-    a = find(a), b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 }  // namespace
 

@@ -1,4 +1,5 @@
 #include "fem/stokes.hpp"
+#include "fem/union_find.hpp"
 
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseQR>
@@ -19,19 +20,6 @@ namespace {
 // A column of the (column-normalized) divergence counts as dependent on the ones before it when
 // its pivot in the rank-revealing QR is below this.
 constexpr double kRankThreshold = 1e-10;
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  }
-  void unite(int a, int b) {
-    a = find(a), b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 // One pressure unknown (the lowest) of every part of the mesh connected through pressure
 // unknowns that has no border edge outside the conditions: there the velocity is given all
