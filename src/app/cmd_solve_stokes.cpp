@@ -34,10 +34,7 @@ int run_stokes(const StokesArgs& args) {
   for (int l = 0; l < p->mesh.line_count(); ++l)
     cut[l] = p->mesh.line_physical[l] == io::kPhysicalPrimary ||
              p->mesh.line_physical[l] == io::kPhysicalSecondary;
-  // Only the nodes of triangles (a straight mesh keeps the cubic one's inner nodes unused), so that
-  // every node of the VTU carries the solution.
-  const io::HighOrderMesh mesh =
-      fem::submesh(fem::cut_open(p->mesh, cut).mesh, std::vector<char>(p->mesh.triangle_count(), 1));
+  const io::HighOrderMesh mesh = fem::cut_open(p->mesh, cut).mesh;
   const fem::Geometry geometry(mesh);
   const fem::Space velocity(mesh, 2), pressure(mesh, 1);
 

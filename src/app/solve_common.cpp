@@ -1,7 +1,6 @@
 #include "app/solve_common.hpp"
 
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <iostream>
 
 #include "app/commands.hpp"
@@ -78,26 +77,15 @@ int write_outputs(const SolveOptions& o, const io::HighOrderMesh& mesh, const st
   try {
     if (!o.output_vtu.empty()) {
       // Only the nodes some triangle uses (a straight map leaves the cubic nodes unused).
-      std::vector<int> renumber(mesh.nodes.size(), -1);
-      io::HighOrderMesh used = mesh;
-      used.nodes.clear();
-      for (int& i : used.triangles) {
-        if (renumber[i] < 0) renumber[i] = static_cast<int>(used.nodes.size()), used.nodes.push_back(mesh.nodes[i]);
-        i = renumber[i];
-      }
-      used.lines.clear();
-      used.line_physical.clear();
-      for (int l = 0; l < mesh.line_count(); ++l) {
-        std::vector<int> ids;
-        for (int i : mesh.line(l)) ids.push_back(renumber[i]);
-        if (std::find(ids.begin(), ids.end(), -1) == ids.end()) used.add_line(ids, mesh.line_physical[l]);
-      }
+      std::vector<int> node_origin;
+      const io::HighOrderMesh used =
+          fem::submesh(mesh, std::vector<char>(mesh.triangle_count(), 1), nullptr, &node_origin);
       std::vector<io::VtuPointArray> kept = arrays;
       for (io::VtuPointArray& a : kept) {
-        std::vector<double> values(used.nodes.size() * a.components);
-        for (std::size_t i = 0; i < renumber.size(); ++i)
-          if (renumber[i] >= 0)
-            for (int c = 0; c < a.components; ++c) values[std::size_t(renumber[i]) * a.components + c] = a.values[i * a.components + c];
+        std::vector<double> values;
+        values.reserve(node_origin.size() * a.components);
+        for (int i : node_origin)
+          for (int c = 0; c < a.components; ++c) values.push_back(a.values[std::size_t(i) * a.components + c]);
         a.values = std::move(values);
       }
       io::write_vtu(used, o.output_vtu, {}, kept);

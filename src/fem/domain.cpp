@@ -84,8 +84,10 @@ Regions find_regions(const io::HighOrderMesh& mesh) {
   return r;
 }
 
-io::HighOrderMesh submesh(const io::HighOrderMesh& mesh, const std::vector<char>& keep, std::vector<int>* line_origin) {
+io::HighOrderMesh submesh(const io::HighOrderMesh& mesh, const std::vector<char>& keep, std::vector<int>* line_origin,
+                          std::vector<int>* node_origin) {
   if (line_origin) line_origin->clear();
+  if (node_origin) node_origin->clear();
   io::HighOrderMesh out;
   out.order = mesh.order;
   out.physical_names = mesh.physical_names;
@@ -94,6 +96,7 @@ io::HighOrderMesh submesh(const io::HighOrderMesh& mesh, const std::vector<char>
     if (renumber[i] < 0) {
       renumber[i] = static_cast<int>(out.nodes.size());
       out.nodes.push_back(mesh.nodes[i]);
+      if (node_origin) node_origin->push_back(i);
     }
     return renumber[i];
   };

@@ -27,9 +27,10 @@ struct Regions {
 Regions find_regions(const io::HighOrderMesh& mesh);
 
 // The triangles with keep[t] set, their nodes (renumbered, in order of first use) and the lines
-// on their edges; line_origin (if given) gets the input line of each line kept.
+// on their edges; line_origin (if given) gets the input line of each line kept, node_origin the
+// input node of each node.
 io::HighOrderMesh submesh(const io::HighOrderMesh& mesh, const std::vector<char>& keep,
-                          std::vector<int>* line_origin = nullptr);
+                          std::vector<int>* line_origin = nullptr, std::vector<int>* node_origin = nullptr);
 
 // The mesh cut open along the lines with cut[l] set: the triangles on the two sides of a cut
 // line get separate copies of its nodes (corners and inner nodes), so that unknowns on the two

@@ -224,6 +224,15 @@ ElasticResult NeoHookean::solve() const {
   cholesky.setMode(Eigen::CholmodSimplicialLLt);
   cholesky.cholmod().print = 0;  // a failed factorisation is expected (an indefinite tangent), not news
   bool analysed = false;
+  // Ends the solve where it stands, saying why.
+  const auto stop = [&](const NewtonIteration& it, std::string why, double e) {
+    result.iterations.push_back(it);
+    result.failure = std::move(why);
+    result.displacement = u;
+    result.energy = e;
+    result.seconds = seconds_since(start);
+    return result;
+  };
   double last_shift = 0;
   const int steps = std::max(1, options_.load_steps);
   for (int s = 1; s <= steps; ++s) {
@@ -239,13 +248,8 @@ ElasticResult NeoHookean::solve() const {
         break;
       }
       if (!std::isfinite(it.residual) || k == options_.max_iterations) {
-        result.iterations.push_back(it);
-        result.failure = std::isfinite(it.residual) ? "no convergence in " + std::to_string(k) + " Newton iterations"
-                                                    : "the residual is not finite";
-        result.displacement = u;
-        result.energy = e;
-        result.seconds = seconds_since(start);
-        return result;
+        return stop(it, std::isfinite(it.residual) ? "no convergence in " + std::to_string(k) + " Newton iterations"
+                                                    : "the residual is not finite", e);
       }
       t = Clock::now();
       const SparseMatrix tangent = assemble_tangent(u, index, m);
@@ -281,12 +285,7 @@ ElasticResult NeoHookean::solve() const {
       result.factor_seconds += seconds_since(t);
       if (it.shift > 0) last_shift = it.shift;
       if (!(slope < 0)) {
-        result.iterations.push_back(it);
-        result.failure = "the tangent could not be made positive definite";
-        result.displacement = u;
-        result.energy = e;
-        result.seconds = seconds_since(start);
-        return result;
+        return stop(it, "the tangent could not be made positive definite", e);
       }
       Eigen::VectorXd full_step = Eigen::VectorXd::Zero(n);
       for (int i = 0; i < m; ++i) full_step[free[i]] = step[i];
@@ -313,12 +312,7 @@ ElasticResult NeoHookean::solve() const {
       }
       result.assembly_seconds += seconds_since(t);
       if (!accepted) {
-        result.iterations.push_back(it);
-        result.failure = "the line search found no step that lowers the energy";
-        result.displacement = u;
-        result.energy = e;
-        result.seconds = seconds_since(start);
-        return result;
+        return stop(it, "the line search found no step that lowers the energy", e);
       }
       it.step_length = alpha;
       result.iterations.push_back(it);
