@@ -345,7 +345,7 @@ bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double en
   return true;
 }
 
-bool swap_edge(TriMesh& m, int a, int b) {
+bool swap_edge(TriMesh& m, int a, int b, double energy_bound) {
   if (m.feature(a, b)) return false;
   const auto [t1, cc] = triangle_left_of(m, a, b);
   const auto [t2, d] = triangle_left_of(m, b, a);
@@ -360,7 +360,7 @@ bool swap_edge(TriMesh& m, int a, int b) {
   const double before = max_amips_of(m, {t1, t2});
   const double after = std::max(geometry::amips(m.point(a), m.point(d), m.point(cc)),
                                 geometry::amips(m.point(d), m.point(b), m.point(cc)));
-  if (!(after < before)) return false;
+  if (!(after < before) && !(after <= energy_bound)) return false;
   m.set_triangle(t1, n1);
   m.set_triangle(t2, n2);
   return true;

@@ -25,8 +25,9 @@ int split_edge(TriMesh& mesh, const Constraints& constraints, int a, int b, doub
 bool collapse_edge(TriMesh& mesh, const Constraints& constraints, int from, int to, double energy_bound);
 
 // Replaces the diagonal (a, b) of the quad formed by its two triangles by the other diagonal,
-// if the largest AMIPS energy of the two triangles decreases. Tagged edges never swap.
-bool swap_edge(TriMesh& mesh, int a, int b);
+// if the largest AMIPS energy of the two triangles decreases or stays at most energy_bound.
+// Tagged edges never swap.
+bool swap_edge(TriMesh& mesh, int a, int b, double energy_bound = 0);
 
 // One Newton step (with line search) on the summed AMIPS energy of v's triangles: in the plane
 // for free and secondary vertices, along the curve for primary ones (App. A), along the side

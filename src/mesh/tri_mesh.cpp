@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <sstream>
+#include <stdexcept>
 
 namespace curvemesh::mesh {
 
 int TriMesh::add_vertex(const Vec2& p, const VertexTag& tag) {
+  record({.kind = Change::Kind::add_vertex});
   points_.push_back(p);
   vertex_tags_.push_back(tag);
   exact_index_.push_back(-1);
@@ -15,37 +17,43 @@ int TriMesh::add_vertex(const Vec2& p, const VertexTag& tag) {
 
 int TriMesh::add_triangle(int a, int b, int c) {
   const int t = triangle_slots();
+  record({.kind = Change::Kind::add_triangle});
   triangles_.push_back({a, b, c});
   for (int v : {a, b, c}) vertex_triangles_[v].push_back(t);
   ++alive_triangles_;
   return t;
 }
 
-void TriMesh::remove_triangle(int t) {
-  if (!alive(t)) return;
+void TriMesh::unlink(int t) {
   for (int v : triangles_[t]) {
     auto& list = vertex_triangles_[v];
     list.erase(std::find(list.begin(), list.end(), t));
   }
+}
+
+void TriMesh::remove_triangle(int t) {
+  if (!alive(t)) return;
+  record({.kind = Change::Kind::remove_triangle, .index = t, .corners = triangles_[t]});
+  unlink(t);
   triangles_[t] = {-1, -1, -1};
   --alive_triangles_;
 }
 
 void TriMesh::set_triangle(int t, const Triangle& corners) {
-  for (int v : triangles_[t]) {
-    auto& list = vertex_triangles_[v];
-    list.erase(std::find(list.begin(), list.end(), t));
-  }
+  record({.kind = Change::Kind::set_triangle, .index = t, .corners = triangles_[t]});
+  unlink(t);
   triangles_[t] = corners;
   for (int v : corners) vertex_triangles_[v].push_back(t);
 }
 
 void TriMesh::set_position(int v, const Vec2& p) {
+  record({.kind = Change::Kind::position, .index = v, .point = points_[v], .exact_index = exact_index_[v]});
   points_[v] = p;
   exact_index_[v] = -1;
 }
 
 void TriMesh::set_exact_position(int v, const ExactPoint& p) {
+  record({.kind = Change::Kind::position, .index = v, .point = points_[v], .exact_index = exact_index_[v]});
   points_[v] = geometry::nearest_double(p);
   exact_index_[v] = static_cast<int>(exact_points_.size());
   exact_points_.push_back(p);
@@ -57,8 +65,79 @@ int TriMesh::exact_vertex_count() const {
   return static_cast<int>(std::count_if(exact_index_.begin(), exact_index_.end(), [](int i) { return i >= 0; }));
 }
 
-void TriMesh::set_feature(int a, int b, const EdgeFeature& f) { features_[edge_key(a, b)] = f; }
-void TriMesh::clear_feature(int a, int b) { features_.erase(edge_key(a, b)); }
+void TriMesh::set_tag(int v, const VertexTag& tag) {
+  record({.kind = Change::Kind::tag, .index = v, .tag = vertex_tags_[v]});
+  vertex_tags_[v] = tag;
+}
+
+void TriMesh::set_feature(int a, int b, const EdgeFeature& f) {
+  if (journal_open_) {
+    const EdgeFeature* old = feature(a, b);
+    record({.kind = Change::Kind::feature, .key = edge_key(a, b), .feature = old ? std::optional(*old) : std::nullopt});
+  }
+  features_[edge_key(a, b)] = f;
+}
+
+void TriMesh::clear_feature(int a, int b) {
+  if (journal_open_) {
+    const EdgeFeature* old = feature(a, b);
+    if (!old) return;
+    record({.kind = Change::Kind::feature, .key = edge_key(a, b), .feature = *old});
+  }
+  features_.erase(edge_key(a, b));
+}
+
+void TriMesh::open_journal() {
+  journal_.clear();
+  journal_open_ = true;
+}
+
+void TriMesh::commit() {
+  journal_.clear();
+  journal_open_ = false;
+}
+
+void TriMesh::rollback() {
+  journal_open_ = false;
+  for (auto it = journal_.rbegin(); it != journal_.rend(); ++it) {
+    const Change& c = *it;
+    switch (c.kind) {
+      case Change::Kind::add_vertex:
+        points_.pop_back();
+        vertex_tags_.pop_back();
+        exact_index_.pop_back();
+        vertex_triangles_.pop_back();
+        break;
+      case Change::Kind::add_triangle:
+        unlink(triangle_slots() - 1);
+        triangles_.pop_back();
+        --alive_triangles_;
+        break;
+      case Change::Kind::remove_triangle:
+        triangles_[c.index] = c.corners;
+        for (int v : c.corners) vertex_triangles_[v].push_back(c.index);
+        ++alive_triangles_;
+        break;
+      case Change::Kind::set_triangle:
+        unlink(c.index);
+        triangles_[c.index] = c.corners;
+        for (int v : c.corners) vertex_triangles_[v].push_back(c.index);
+        break;
+      case Change::Kind::position:
+        points_[c.index] = c.point;
+        exact_index_[c.index] = c.exact_index;  // exact points are only appended: the old one is there
+        break;
+      case Change::Kind::tag:
+        vertex_tags_[c.index] = c.tag;
+        break;
+      case Change::Kind::feature:
+        if (c.feature) features_[c.key] = *c.feature;
+        else features_.erase(c.key);
+        break;
+    }
+  }
+  journal_.clear();
+}
 
 const EdgeFeature* TriMesh::feature(int a, int b) const {
   const auto it = features_.find(edge_key(a, b));
@@ -114,6 +193,7 @@ int TriMesh::orientation_with(int a, int b, int c, int moved, const Vec2& p) con
 }
 
 std::vector<int> TriMesh::compact() {
+  if (journal_open_) throw std::logic_error("TriMesh::compact with an open journal");
   const int n = vertex_count();
   std::vector<int> remap(n, -1);
   int next = 0;

@@ -75,7 +75,7 @@ class TriMesh {
   void set_triangle(int t, const Triangle& corners);
   void set_position(int v, const Vec2& p);  // also drops an exact position
   void set_exact_position(int v, const ExactPoint& p);  // keeps `point(v)` as its nearest double
-  void set_tag(int v, const VertexTag& tag) { vertex_tags_[v] = tag; }
+  void set_tag(int v, const VertexTag& tag);
   void set_feature(int a, int b, const EdgeFeature& f);
   void clear_feature(int a, int b);
 
@@ -111,6 +111,16 @@ class TriMesh {
   // unused in a valid mesh); renumbers everything. Returns the old-to-new vertex map (-1 = removed).
   std::vector<int> compact();
 
+  // --- taking changes back ---
+  // While a journal is open, every change above is recorded; `rollback` takes them all back (the
+  // mesh is then as it was when the journal opened, up to the order of incidence lists) and
+  // `commit` keeps them. Used to try an operation and judge its outcome afterwards. `compact`
+  // is not allowed while a journal is open.
+  void open_journal();
+  void rollback();
+  void commit();
+  bool journal_open() const { return journal_open_; }
+
   // Checks the structural invariants: incidence lists match triangles, every triangle is
   // counter-clockwise (exact), every tagged edge exists. Returns a description of the first
   // violation, or nothing.
@@ -125,6 +135,24 @@ class TriMesh {
   std::vector<std::vector<int>> vertex_triangles_;
   std::unordered_map<std::uint64_t, EdgeFeature> features_;
   int alive_triangles_ = 0;
+
+  struct Change {
+    enum class Kind : std::uint8_t { add_vertex, add_triangle, remove_triangle, set_triangle, position, tag, feature };
+    Kind kind;
+    int index = -1;  // vertex or triangle
+    Triangle corners{};
+    Vec2 point = Vec2::Zero();
+    int exact_index = -1;
+    VertexTag tag{};
+    std::uint64_t key = 0;
+    std::optional<EdgeFeature> feature = std::nullopt;
+  };
+  void record(Change change) {
+    if (journal_open_) journal_.push_back(std::move(change));
+  }
+  void unlink(int t);  // removes t from its corners' incidence lists
+  bool journal_open_ = false;
+  std::vector<Change> journal_;
 };
 
 }  // namespace curvemesh::mesh

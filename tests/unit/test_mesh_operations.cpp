@@ -8,6 +8,8 @@
 #include <cmath>
 #include <map>
 #include <random>
+#include <set>
+#include <stdexcept>
 
 #include "mesh/operations.hpp"
 
@@ -223,6 +225,76 @@ TEST(MeshOperations, RejectedOperationsLeaveNoTrace) {
   EXPECT_GT(rejected, 20);
   EXPECT_EQ(f.mesh.sorted_features(), before);
   for (int v = 0; v < f.mesh.vertex_count(); ++v) EXPECT_EQ(f.mesh.point(v), points[v]);
+}
+
+// Everything a TriMesh holds, incidence lists as sets (a rollback may reorder them).
+struct MeshState {
+  std::vector<Vec2> points;
+  std::vector<VertexTag> tags;
+  std::vector<bool> exact;
+  std::vector<Triangle> triangles;
+  std::vector<std::set<int>> incidence;
+  std::vector<std::pair<std::array<int, 2>, EdgeFeature>> features;
+  int alive = 0;
+  bool operator==(const MeshState&) const = default;
+};
+MeshState state_of(const TriMesh& m) {
+  MeshState s;
+  for (int v = 0; v < m.vertex_count(); ++v) {
+    s.points.push_back(m.point(v));
+    s.tags.push_back(m.tag(v));
+    s.exact.push_back(m.has_exact(v));
+    s.incidence.emplace_back(m.triangles_of(v).begin(), m.triangles_of(v).end());
+  }
+  for (int t = 0; t < m.triangle_slots(); ++t) s.triangles.push_back(m.triangle(t));
+  s.features = m.sorted_features();
+  s.alive = m.triangle_count();
+  return s;
+}
+
+TEST(MeshOperations, RolledBackOperationsLeaveTheMeshAsItWas) {
+  // Runs of random committed operations under a journal: rolled back, the mesh is the one before
+  // (every array and tag compared); committed, the changes stay.
+  Fixture f = make_grid(8, 5);
+  std::mt19937 rng(2024);
+  int rolled_back = 0, changes = 0;
+  for (int run = 0; run < 60; ++run) {
+    const MeshState before = state_of(f.mesh);
+    f.mesh.open_journal();
+    int done = 0;
+    for (int step = 0; step < 12; ++step) {
+      const auto edges = edges_of(f.mesh);
+      const auto& e = edges[std::uniform_int_distribution<std::size_t>(0, edges.size() - 1)(rng)];
+      const int v = e[rng() % 2];
+      switch (rng() % 4) {
+        case 0: done += split_edge(f.mesh, f.constraints, e[0], e[1], 10.0) >= 0; break;
+        case 1: done += collapse_edge(f.mesh, f.constraints, v, e[0] + e[1] - v, 1e9); break;
+        case 2: done += swap_edge(f.mesh, e[0], e[1], 1e9); break;
+        default: done += smooth_vertex(f.mesh, f.constraints, v);
+      }
+    }
+    changes += done;
+    if (run % 3 == 2) {
+      f.mesh.commit();
+      EXPECT_FALSE(f.mesh.journal_open());
+      if (done > 0) {
+        EXPECT_NE(state_of(f.mesh), before);
+      }
+      expect_invariants(f, "commit");
+    } else {
+      f.mesh.rollback();
+      ++rolled_back;
+      ASSERT_TRUE(state_of(f.mesh) == before) << "run " << run << " (" << done << " operations)";
+      expect_invariants(f, "rollback");
+    }
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_EQ(rolled_back, 40);
+  EXPECT_GT(changes, 200);
+  // A compaction with an open journal is refused.
+  f.mesh.open_journal();
+  EXPECT_THROW(f.mesh.compact(), std::logic_error);
+  f.mesh.rollback();
 }
 
 TEST(MeshOperations, SplitOfAPrimaryEdgeLandsOnTheCurve) {
