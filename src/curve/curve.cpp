@@ -92,7 +92,8 @@ class Builder {
   void run() {
     const TriMesh& m = out_.linear;
     out_.nodes.assign(m.vertex_count(), Vec2::Zero());
-    for (int v = 0; v < m.vertex_count(); ++v) out_.nodes[v] = m.point(v);
+    vertex_node_.resize(m.vertex_count());
+    for (int v = 0; v < m.vertex_count(); ++v) out_.nodes[v] = m.point(v), vertex_node_[v] = v;
     // Edge nodes, in the order triangles first meet their edges (deterministic).
     for (int t = 0; t < m.triangle_slots(); ++t) {
       if (!m.alive(t)) continue;
@@ -122,7 +123,7 @@ class Builder {
       const auto& tri = m.triangle(order[k]);
       std::array<int, 10> ids{};
       for (int i = 0; i < 3; ++i) {
-        ids[i] = tri[i];
+        ids[i] = vertex_node_[tri[i]];
         const auto [first, second] = edge_nodes(tri[i], tri[(i + 1) % 3]);
         ids[3 + 2 * i] = first;
         ids[4 + 2 * i] = second;
@@ -142,7 +143,8 @@ class Builder {
       }
       out_.triangles.push_back(ids);
     }
-    // Step 4, in part: smoothing where the curved triangles are worse than the stop energy.
+    // Step 4: smoothing, then the local operations, where the curved triangles are worse than the
+    // stop energy.
     s_.max_amips_before_smoothing = 0;
     for (std::size_t t = 0; t < out_.triangles.size(); ++t)
       s_.max_amips_before_smoothing = std::max(s_.max_amips_before_smoothing, energy(static_cast<int>(t)));
@@ -151,10 +153,12 @@ class Builder {
     for (int v = 0; v < m.vertex_count(); ++v)
       if (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) s_.late_projections += project(v);
     smooth();
+    improve();
     // Step 5: the primary edges still straight.
     for (const auto& [edge, f] : m.sorted_features())
       if (f.kind == EdgeKind::primary && !curved_.at(mesh::edge_key(edge[0], edge[1])) && followable(m, edge[0], edge[1]))
         fit(edge[0], edge[1]);
+    finish();
     for (std::size_t t = 0; t < out_.triangles.size(); ++t) {
       const double e = energy(static_cast<int>(t));
       s_.max_amips = std::max(s_.max_amips, e);
@@ -187,9 +191,13 @@ class Builder {
   }
 
  private:
-  // ----- Step 4, in part: smoothing of the curved mesh --------------------------------------
-  // The linear mesh was compacted before curving, so triangle t of the curved mesh is triangle t
-  // of out_.linear.
+  // ----- Step 4: smoothing and local operations on the curved mesh -------------------------
+  // Triangle t of the curved mesh is triangle slot t of out_.linear (compacted before curving;
+  // the operations add slots and leave dead ones, which finish() drops from both).
+
+  // The node of vertex v (a corner).
+  Vec2& at(int v) { return out_.nodes[vertex_node_[v]]; }
+  const Vec2& at(int v) const { return out_.nodes[vertex_node_[v]]; }
 
   geometry::P3Nodes nodes_of(int t) const {
     geometry::P3Nodes p;
@@ -198,32 +206,286 @@ class Builder {
   }
   double energy(int t) const { return geometry::p3_max_amips(nodes_of(t)); }
 
-  // Up to max_smoothing_passes passes over the triangles above stop_amips: the free corners of
-  // each (they move in the plane, their edges stay straight), its corners on curves (they slide
+  // Up to max_smoothing_passes passes over the triangles above stop_amips: the free and
+  // secondary corners of each (they move in the plane, their edges stay straight, secondary
+  // ones inside the ε-envelope), its corners on curves (they slide
   // along their curve, their curved edges follow) and its centre node move where the worst
   // energy around them is lowest, by compass search; a move is kept only when every
   // triangle it changes is certified and the worst energy among them went down.
   void smooth() {
-    for (int pass = 0; pass < o_.max_smoothing_passes; ++pass) {
-      std::vector<int> bad;
-      for (std::size_t t = 0; t < out_.triangles.size(); ++t)
-        if (energy(static_cast<int>(t)) > o_.stop_amips) bad.push_back(static_cast<int>(t));
-      if (bad.empty()) return;
-      std::vector<int> corners;
-      for (int t : bad)
-        for (int i = 0; i < 3; ++i) corners.push_back(out_.triangles[t][i]);
-      std::sort(corners.begin(), corners.end());
-      corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
-      int moved = 0;
-      for (int v : corners) {
-        const mesh::VertexTag& tag = out_.linear.tag(v);
-        if (tag.kind == mesh::VertexKind::free) moved += smooth_corner(v);
-        else if (tag.kind == mesh::VertexKind::primary && tag.on_curve) moved += smooth_curve_corner(v);
-      }
-      for (int t : bad) moved += smooth_centre(t);
-      s_.smoothing_moves += moved;
-      if (moved == 0) return;
+    for (int pass = 0; pass < o_.max_smoothing_passes; ++pass)
+      if (smooth_pass() == 0) return;
+  }
+
+  // The alive triangles above the stop energy, worst first.
+  std::vector<int> bad_triangles() const {
+    std::vector<std::pair<double, int>> bad;
+    for (std::size_t t = 0; t < out_.triangles.size(); ++t)
+      if (out_.linear.alive(static_cast<int>(t)))
+        if (const double e = energy(static_cast<int>(t)); e > o_.stop_amips) bad.push_back({-e, static_cast<int>(t)});
+    std::sort(bad.begin(), bad.end());
+    std::vector<int> out;
+    for (const auto& [e, t] : bad) out.push_back(t);
+    return out;
+  }
+
+  // One smoothing pass; returns the number of moves kept.
+  int smooth_pass() {
+    const std::vector<int> bad = bad_triangles();
+    if (bad.empty()) return 0;
+    std::vector<int> corners;
+    for (int t : bad)
+      for (int v : out_.linear.triangle(t)) corners.push_back(v);
+    std::sort(corners.begin(), corners.end());
+    corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+    int moved = 0;
+    for (int v : corners) {
+      const mesh::VertexTag& tag = out_.linear.tag(v);
+      if (tag.kind == mesh::VertexKind::free || tag.kind == mesh::VertexKind::secondary) moved += smooth_corner(v);
+      else if (tag.kind == mesh::VertexKind::primary && tag.on_curve) moved += smooth_curve_corner(v);
     }
+    for (int t : bad) moved += smooth_centre(t);
+    s_.smoothing_moves += moved;
+    return moved;
+  }
+
+  // Passes over the triangles still above the stop energy after smoothing: for each, the swap
+  // of one of its edges, else the collapse of one, else the split of one (longer edges first),
+  // whichever first lowers the worst energy of the triangles it changes with every changed
+  // triangle certified; then a smoothing pass. At most max_smoothing_passes passes.
+  void improve() {
+    for (int pass = 0; pass < o_.max_smoothing_passes; ++pass) {
+      const std::vector<int> bad = bad_triangles();
+      if (bad.empty()) return;
+      int changed = 0;
+      for (int t : bad)
+        if (out_.linear.alive(t) && energy(t) > o_.stop_amips) changed += improve_triangle(t);
+      changed += smooth_pass();
+      if (changed == 0) return;
+    }
+  }
+
+  int improve_triangle(int t) {
+    TriMesh& m = out_.linear;
+    const mesh::Triangle tri = m.triangle(t);
+    std::array<std::array<int, 2>, 3> edges{{{tri[0], tri[1]}, {tri[1], tri[2]}, {tri[2], tri[0]}}};
+    std::stable_sort(edges.begin(), edges.end(), [&](const auto& x, const auto& y) {
+      return (at(x[0]) - at(x[1])).squaredNorm() > (at(y[0]) - at(y[1])).squaredNorm();
+    });
+    for (const auto& [a, b] : edges) {
+      if (m.feature(a, b)) continue;
+      if (try_operation(m.edge_triangles(a, b), [&]() -> std::optional<std::vector<int>> {
+            std::vector<int> changed = m.edge_triangles(a, b);
+            if (!mesh::swap_edge(m, a, b, std::numeric_limits<double>::infinity())) return std::nullopt;
+            return changed;
+          })) {
+        ++s_.curved_swaps;
+        return 1;
+      }
+    }
+    for (const auto& [a, b] : edges)
+      for (const auto& [from, to] : {std::pair{a, b}, std::pair{b, a}}) {
+        const std::vector<int> star = m.triangles_of(from);
+        if (try_operation(star, [&]() -> std::optional<std::vector<int>> {
+              std::vector<int> kept;
+              for (int u : star) {
+                const auto& corners = m.triangle(u);
+                if (std::find(corners.begin(), corners.end(), to) == corners.end()) kept.push_back(u);
+              }
+              if (!mesh::collapse_edge(m, c_, from, to, std::numeric_limits<double>::infinity())) return std::nullopt;
+              return kept;
+            })) {
+          ++s_.curved_collapses;
+          return 1;
+        }
+      }
+    // Splits: one edge, or two (the triangle's corner between them cut off: a thin corner
+    // between a curve and another feature needs both its sides shortened), the new vertices
+    // moved where their stars are best before the outcome is judged.
+    const auto split = [&](int a, int b) {
+      const int mid = mesh::split_edge(m, c_, a, b, std::numeric_limits<double>::infinity());
+      // A primary vertex left on the chord would leave its curve's edges straight.
+      return mid >= 0 && !(m.tag(mid).kind == mesh::VertexKind::primary && !m.tag(mid).on_curve) ? mid : -1;
+    };
+    for (const auto& [a, b] : edges) {
+      if (try_operation(m.edge_triangles(a, b), [&]() -> std::optional<std::vector<int>> {
+            const int mid = split(a, b);
+            if (mid < 0) return std::nullopt;
+            return m.triangles_of(mid);
+          })) {
+        ++s_.curved_splits;
+        return 1;
+      }
+    }
+    for (int i = 0; i < 3; ++i) {
+      // The corner tri[i] between edges (tri[i], tri[i+1]) and (tri[i+2], tri[i]).
+      const int a = tri[i], b = tri[(i + 1) % 3], c = tri[(i + 2) % 3];
+      std::vector<int> before = m.edge_triangles(a, b), other = m.edge_triangles(c, a);
+      before.insert(before.end(), other.begin(), other.end());
+      std::sort(before.begin(), before.end());
+      before.erase(std::unique(before.begin(), before.end()), before.end());
+      if (try_operation(before, [&]() -> std::optional<std::vector<int>> {
+            const int m1 = split(a, b);
+            const int m2 = m1 < 0 ? -1 : split(c, a);
+            if (m2 < 0) return std::nullopt;
+            std::vector<int> changed = m.triangles_of(m1);
+            changed.insert(changed.end(), m.triangles_of(m2).begin(), m.triangles_of(m2).end());
+            std::sort(changed.begin(), changed.end());
+            changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+            return changed;
+          })) {
+        s_.curved_splits += 2;
+        return 1;
+      }
+    }
+    return 0;
+  }
+
+  // Tries a local operation of the linear mesh on the curved mesh. `operation` changes
+  // out_.linear (under its journal) and returns the triangles it changed or made, or nothing if
+  // it refused. Those triangles get their P3 nodes (new edges on their curve where they can
+  // follow it, centres chosen as in step 2); the operation is kept only if none of them has two
+  // primary edges, all are certified and their worst energy is below that of `before`, the
+  // triangles it replaces. Otherwise everything is put back.
+  template <class Operation>
+  bool try_operation(const std::vector<int>& before, const Operation& operation) {
+    TriMesh& m = out_.linear;
+    double worst_before = 0;
+    std::vector<std::uint64_t> old_edges;
+    struct Saved {
+      int t;
+      std::array<int, 10> ids;
+      double scaled;
+    };
+    std::vector<Saved> saved;
+    for (int t : before) {
+      worst_before = std::max(worst_before, energy(t));
+      saved.push_back({t, out_.triangles[t], scaled_[t]});
+      const auto& tri = m.triangle(t);
+      for (int i = 0; i < 3; ++i) old_edges.push_back(mesh::edge_key(tri[i], tri[(i + 1) % 3]));
+    }
+    const std::size_t nodes0 = out_.nodes.size(), vertices0 = vertex_node_.size(), slots0 = out_.triangles.size();
+    new_edges_.clear();
+    m.open_journal();
+    const std::optional<std::vector<int>> after = operation();
+    bool ok = after.has_value();
+    if (ok) {
+      for (int v = static_cast<int>(vertices0); v < m.vertex_count(); ++v) {
+        vertex_node_.push_back(static_cast<int>(out_.nodes.size()));
+        out_.nodes.push_back(m.point(v));
+      }
+      out_.triangles.resize(m.triangle_slots());
+      scaled_.resize(m.triangle_slots(), -1.0);
+      for (int t : *after) ok = ok && place_triangle(t);
+      for (int v = static_cast<int>(vertices0); ok && v < m.vertex_count(); ++v) settle_vertex(v, *after);
+      double worst_after = 0;
+      if (ok)
+        for (int t : *after) worst_after = std::max(worst_after, energy(t));
+      ok = ok && worst_after < worst_before && certify_all(*after);
+    }
+    if (!ok) {
+      m.rollback();
+      for (const auto key : new_edges_) first_node_.erase(key), curved_.erase(key);
+      out_.nodes.resize(nodes0);
+      vertex_node_.resize(vertices0);
+      out_.triangles.resize(slots0);
+      scaled_.resize(slots0);
+      for (const Saved& x : saved) out_.triangles[x.t] = x.ids, scaled_[x.t] = x.scaled;
+      new_edges_.clear();
+      return false;
+    }
+    m.commit();
+    new_edges_.clear();
+    // Edges the operation removed lose their nodes (a later operation may make them again).
+    for (const auto key : old_edges) {
+      const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
+      if (m.edge_triangles(a, b).empty()) first_node_.erase(key), curved_.erase(key);
+    }
+    return true;
+  }
+
+  // A vertex made by a split moves to where its star is best (free vertices in the plane,
+  // secondary ones in the plane while their secondary edges stay in the ε-envelope, primary ones
+  // along their curve; others stay), then the centres of `triangles` do.
+  void settle_vertex(int v, const std::vector<int>& triangles) {
+    const mesh::VertexTag& tag = out_.linear.tag(v);
+    if (tag.kind == mesh::VertexKind::free || tag.kind == mesh::VertexKind::secondary) smooth_corner(v);
+    else if (tag.kind == mesh::VertexKind::primary && tag.on_curve) smooth_curve_corner(v);
+    for (int t : triangles) smooth_centre(t);
+  }
+
+  // Gives triangle t (changed by an operation) its nodes: its edges' (made where new), a new
+  // centre. False if it has two primary edges (step 1 gave every triangle at most one).
+  bool place_triangle(int t) {
+    const TriMesh& m = out_.linear;
+    const mesh::Triangle tri = m.triangle(t);
+    if (primary_edges_of(m, tri) > 1) return false;
+    std::array<int, 10> ids{};
+    for (int i = 0; i < 3; ++i) {
+      add_edge(tri[i], tri[(i + 1) % 3]);
+      ids[i] = vertex_node_[tri[i]];
+      const auto [first, second] = edge_nodes(tri[i], tri[(i + 1) % 3]);
+      ids[3 + 2 * i] = first;
+      ids[4 + 2 * i] = second;
+    }
+    ids[9] = static_cast<int>(out_.nodes.size());
+    out_.nodes.push_back((at(tri[0]) + at(tri[1]) + at(tri[2])) / 3);
+    out_.triangles[t] = ids;
+    if (curved_edge_of(tri) >= 0) choose_centre_of(t);
+    return true;
+  }
+
+  // After step 4: the linear mesh compacted (dead triangles and removed vertices dropped), the
+  // curved triangles with it, and the nodes renumbered, vertices first in their new order, then
+  // every other node still used in its old order.
+  void finish() {
+    TriMesh& m = out_.linear;
+    std::vector<std::array<int, 10>> triangles;
+    std::vector<double> scaled;
+    for (int t = 0; t < m.triangle_slots(); ++t)
+      if (m.alive(t)) triangles.push_back(out_.triangles[t]), scaled.push_back(scaled_[t]);
+    // Edge data, keyed by the new vertex numbers (the renumbering keeps the vertices' order).
+    std::vector<std::pair<std::array<int, 2>, int>> edges;
+    for (int t = 0; t < m.triangle_slots(); ++t) {
+      if (!m.alive(t)) continue;
+      const auto& tri = m.triangle(t);
+      for (int i = 0; i < 3; ++i) {
+        const int a = std::min(tri[i], tri[(i + 1) % 3]), b = std::max(tri[i], tri[(i + 1) % 3]);
+        edges.push_back({{a, b}, first_node_.at(mesh::edge_key(a, b))});  // inner edges twice
+      }
+    }
+    const std::vector<int> remap = m.compact();
+    std::vector<int> node_id(out_.nodes.size(), -1);
+    int next = 0;
+    for (std::size_t v = 0; v < remap.size(); ++v)
+      if (remap[v] >= 0) node_id[vertex_node_[v]] = remap[v], ++next;
+    std::vector<char> used(out_.nodes.size(), 0);
+    for (const auto& ids : triangles)
+      for (int id : ids) used[id] = 1;
+    for (std::size_t id = 0; id < out_.nodes.size(); ++id)
+      if (used[id] && node_id[id] < 0) node_id[id] = next++;
+    std::vector<Vec2> nodes(next);
+    for (std::size_t id = 0; id < out_.nodes.size(); ++id)
+      if (node_id[id] >= 0) nodes[node_id[id]] = out_.nodes[id];
+    for (auto& ids : triangles)
+      for (int& id : ids) id = node_id[id];
+    std::unordered_map<std::uint64_t, int> first_node;
+    std::unordered_map<std::uint64_t, bool> curved;
+    std::unordered_set<std::uint64_t> fitted;
+    for (const auto& [edge, first] : edges) {
+      const auto key = mesh::edge_key(edge[0], edge[1]), new_key = mesh::edge_key(remap[edge[0]], remap[edge[1]]);
+      first_node[new_key] = node_id[first];
+      curved[new_key] = curved_.at(key);
+      if (fitted_.count(key)) fitted.insert(new_key);
+    }
+    out_.nodes = std::move(nodes);
+    out_.triangles = std::move(triangles);
+    scaled_ = std::move(scaled);
+    first_node_ = std::move(first_node);
+    curved_ = std::move(curved);
+    fitted_ = std::move(fitted);
+    vertex_node_.resize(m.vertex_count());
+    for (int v = 0; v < m.vertex_count(); ++v) vertex_node_[v] = v;
   }
 
   // The nodes of some triangles, to put back when a move is refused.
@@ -261,6 +523,18 @@ class Builder {
     return true;
   }
 
+  // Whether v's secondary edges stay inside the ε-envelope of the secondary input with v at p
+  // (invariant 2 of §4.1).
+  bool secondary_edges_inside_with(int v, const Vec2& p) const {
+    const TriMesh& m = out_.linear;
+    if (m.tag(v).kind != mesh::VertexKind::secondary) return true;
+    for (int w : m.neighbours(v)) {
+      const mesh::EdgeFeature* f = m.feature(v, w);
+      if (f && f->kind == EdgeKind::secondary && !c_.envelope.contains(p, m.point(w))) return false;
+    }
+    return true;
+  }
+
   // The largest of `measure` (energy, badness) over v's triangles.
   template <class Measure>
   double star_worst(int v, const Measure& measure) const {
@@ -278,8 +552,8 @@ class Builder {
     double shortest = std::numeric_limits<double>::infinity();
     for (int w : m.neighbours(v)) shortest = std::min(shortest, (m.point(w) - m.point(v)).norm());
     const Snapshot saved = snapshot(m.triangles_of(v));
-    return compass_search(out_.nodes[v], 0.25 * shortest, [&](const Vec2& p) {
-      if (!corners_valid_with(v, p)) return std::numeric_limits<double>::infinity();
+    return compass_search(at(v), 0.25 * shortest, [&](const Vec2& p) {
+      if (!corners_valid_with(v, p) || !secondary_edges_inside_with(v, p)) return std::numeric_limits<double>::infinity();
       place_corner(v, p);
       const double worst = star_worst(v, measure);
       restore(saved);
@@ -311,22 +585,23 @@ class Builder {
   // interval; straight ones at thirds), and the centres of its triangles (straight: the
   // centroid; curved: the candidate of lowest badness, certified later).
   void place_corner(int v, const Vec2& p) {
-    out_.nodes[v] = p;
+    at(v) = p;
     const TriMesh& m = out_.linear;
     for (int t : m.triangles_of(v)) {
-      auto& ids = out_.triangles[t];
+      const auto& ids = out_.triangles[t];
+      const auto& tri = m.triangle(t);
       for (int i = 0; i < 3; ++i) {
-        const int a = ids[i], b = ids[(i + 1) % 3];
+        const int a = tri[i], b = tri[(i + 1) % 3];
         if (a != v && b != v) continue;
         if (curved_.at(mesh::edge_key(a, b))) {
           place_on_curve(std::min(a, b), std::max(a, b));
         } else {
-          out_.nodes[ids[3 + 2 * i]] = (2 * out_.nodes[a] + out_.nodes[b]) / 3;
-          out_.nodes[ids[4 + 2 * i]] = (out_.nodes[a] + 2 * out_.nodes[b]) / 3;
+          out_.nodes[ids[3 + 2 * i]] = (2 * at(a) + at(b)) / 3;
+          out_.nodes[ids[4 + 2 * i]] = (at(a) + 2 * at(b)) / 3;
         }
       }
-      if (curved_edge_of(m.triangle(t)) < 0) {
-        out_.nodes[ids[9]] = (out_.nodes[ids[0]] + out_.nodes[ids[1]] + out_.nodes[ids[2]]) / 3;
+      if (curved_edge_of(tri) < 0) {
+        out_.nodes[ids[9]] = (at(tri[0]) + at(tri[1]) + at(tri[2])) / 3;
         continue;
       }
       choose_centre_of(t);
@@ -412,7 +687,7 @@ class Builder {
       undo();
       return 0;
     }
-    m.set_position(v, out_.nodes[v]);
+    m.set_position(v, at(v));
     return 1;
   }
 
@@ -618,6 +893,7 @@ class Builder {
   void add_edge(int a, int b) {
     const auto key = mesh::edge_key(a, b);
     if (first_node_.count(key)) return;
+    new_edges_.push_back(key);
     const int lo = std::min(a, b), hi = std::max(a, b);
     first_node_[key] = static_cast<int>(out_.nodes.size());
     out_.nodes.push_back(Vec2::Zero());
@@ -629,7 +905,7 @@ class Builder {
 
   void place_straight(int lo, int hi) {
     const int n = first_node_.at(mesh::edge_key(lo, hi));
-    const Vec2 &a = out_.nodes[lo], &b = out_.nodes[hi];
+    const Vec2 &a = at(lo), &b = at(hi);
     out_.nodes[n] = (2 * a + b) / 3;
     out_.nodes[n + 1] = (a + 2 * b) / 3;
   }
@@ -666,7 +942,7 @@ class Builder {
   geometry::P3Nodes element(const mesh::Triangle& tri) const {
     geometry::P3Nodes p;
     for (int i = 0; i < 3; ++i) {
-      p[i] = out_.nodes[tri[i]];
+      p[i] = at(tri[i]);
       const auto [first, second] = edge_nodes(tri[i], tri[(i + 1) % 3]);
       p[3 + 2 * i] = out_.nodes[first];
       p[4 + 2 * i] = out_.nodes[second];
@@ -710,7 +986,7 @@ class Builder {
   double distance_to_curve(int a, int b, const mesh::EdgeFeature& f, int first, int second) const {
     const mesh::SectionCurve& curve = c_.sections[f.source];
     const auto [ta, tb] = parameters(f, a, b);
-    const Vec2 &p0 = out_.nodes[a], &p1 = out_.nodes[first], &p2 = out_.nodes[second], &p3 = out_.nodes[b];
+    const Vec2 &p0 = at(a), &p1 = out_.nodes[first], &p2 = out_.nodes[second], &p3 = at(b);
     double worst = 0;
     for (int i = 0; i <= 16; ++i) {
       const double s = i / 16.0;
@@ -723,10 +999,14 @@ class Builder {
   const mesh::Constraints& c_;
   const Options& o_;
   Stats& s_;
+  // Where each vertex's node is in out_.nodes: the vertex's own index until step 4 adds vertices
+  // (finish() puts the vertices first again).
+  std::vector<int> vertex_node_;
   std::unordered_map<std::uint64_t, int> first_node_;
   std::unordered_map<std::uint64_t, bool> curved_;
   std::vector<double> scaled_;  // per triangle: its scaled Jacobian, or −1 if not certified
   std::unordered_set<std::uint64_t> fitted_;  // primary edges fitted (step 5), not on their curve
+  std::vector<std::uint64_t> new_edges_;      // edges made during the operation being tried
 };
 
 }  // namespace

@@ -12,9 +12,15 @@
 //  3. Validity: the Jacobian determinant of every curved triangle is certified positive on the
 //     whole triangle (Bernstein coefficients, subdivision; geometry/p3_triangle). A primary edge
 //     is straightened when either of its triangles cannot be certified with it curved.
-//  4. In part: primary vertices still off their curve are projected onto it; where a triangle's
-//     AMIPS energy exceeds Options::stop_amips, its free corners, its corners on curves (along
-//     them) and its centre node move, each move certified again. (No split, collapse or swap.)
+//  4. Primary vertices still off their curve are projected onto it. Where a triangle's AMIPS
+//     energy exceeds Options::stop_amips, smoothing first: its free and secondary corners move in
+//     the plane (secondary edges inside the ε-envelope), its corners on curves along them, its
+//     centre node anywhere, each move certified again. Then, for triangles still above, the local
+//     operations of §4.1 on the curved mesh: a swap of one of its edges, else a collapse, else a
+//     split of one edge or of the two edges at one corner, the new vertices smoothed; the touched
+//     triangles get their P3 nodes and are certified, and the operation is kept only if their
+//     worst energy went down (the linear mesh's journal takes a refused one back). Passes stop
+//     at the stop energy or after Options::max_smoothing_passes.
 //  5. A straightened edge gets its free opposite corners moved out of the curve's way; failing
 //     that, it is fitted: bent towards the curve as far as its triangles stay certified and within
 //     the stop energy. The distance left from every fitted or straight edge to its curve is
@@ -33,8 +39,8 @@ using geometry::Vec2;
 
 struct Options {
   int certificate_depth = 10;  // subdivision levels of the Jacobian certificate
-  // Step 4 (§4.2): smoothing of the curved mesh stops once every triangle's AMIPS energy is at
-  // most this, or after this many passes.
+  // Step 4 (§4.2): smoothing and the local operations on the curved mesh stop once every
+  // triangle's AMIPS energy is at most this, or after this many passes (of each).
   double stop_amips = 20;
   int max_smoothing_passes = 10;
 };
@@ -56,6 +62,7 @@ struct Stats {
   double max_amips = 0, mean_amips = 0;
   double max_amips_before_smoothing = 0;  // the same before step 4
   int smoothing_moves = 0;                // corner and centre moves step 4 kept
+  int curved_splits = 0, curved_collapses = 0, curved_swaps = 0;  // operations step 4 kept
   int late_projections = 0;               // primary vertices brought onto their curve only now
   double seconds = 0;
 };
