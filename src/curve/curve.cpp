@@ -153,11 +153,12 @@ class Builder {
     for (int v = 0; v < m.vertex_count(); ++v)
       if (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) s_.late_projections += project(v);
     smooth();
-    improve();
-    // Step 5: the primary edges still straight.
+    // Step 5: the primary edges still straight. Bringing one onto its curve may leave a poor
+    // (certified) triangle, which the operations below then improve.
     for (const auto& [edge, f] : m.sorted_features())
       if (f.kind == EdgeKind::primary && !curved_.at(mesh::edge_key(edge[0], edge[1])) && followable(m, edge[0], edge[1]))
         fit(edge[0], edge[1]);
+    improve();
     finish();
     for (std::size_t t = 0; t < out_.triangles.size(); ++t) {
       const double e = energy(static_cast<int>(t));
@@ -241,6 +242,7 @@ class Builder {
     int moved = 0;
     for (int v : corners) {
       const mesh::VertexTag& tag = out_.linear.tag(v);
+      if (on_fitted_edge(v)) continue;  // its edge's bend was fitted for where it is
       if (tag.kind == mesh::VertexKind::free || tag.kind == mesh::VertexKind::secondary) moved += smooth_corner(v);
       else if (tag.kind == mesh::VertexKind::primary && tag.on_curve) moved += smooth_curve_corner(v);
     }
@@ -365,6 +367,7 @@ class Builder {
       for (int i = 0; i < 3; ++i) old_edges.push_back(mesh::edge_key(tri[i], tri[(i + 1) % 3]));
     }
     const std::size_t nodes0 = out_.nodes.size(), vertices0 = vertex_node_.size(), slots0 = out_.triangles.size();
+    const int moves0 = s_.smoothing_moves;
     new_edges_.clear();
     m.open_journal();
     const std::optional<std::vector<int>> after = operation();
@@ -391,6 +394,7 @@ class Builder {
       out_.triangles.resize(slots0);
       scaled_.resize(slots0);
       for (const Saved& x : saved) out_.triangles[x.t] = x.ids, scaled_[x.t] = x.scaled;
+      s_.smoothing_moves = moves0;
       new_edges_.clear();
       return false;
     }
@@ -399,7 +403,7 @@ class Builder {
     // Edges the operation removed lose their nodes (a later operation may make them again).
     for (const auto key : old_edges) {
       const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
-      if (m.edge_triangles(a, b).empty()) first_node_.erase(key), curved_.erase(key);
+      if (m.edge_triangles(a, b).empty()) first_node_.erase(key), curved_.erase(key), fitted_.erase(key);
     }
     return true;
   }
@@ -409,6 +413,7 @@ class Builder {
   // along their curve; others stay), then the centres of `triangles` do.
   void settle_vertex(int v, const std::vector<int>& triangles) {
     const mesh::VertexTag& tag = out_.linear.tag(v);
+    if (on_fitted_edge(v)) return;
     if (tag.kind == mesh::VertexKind::free || tag.kind == mesh::VertexKind::secondary) smooth_corner(v);
     else if (tag.kind == mesh::VertexKind::primary && tag.on_curve) smooth_curve_corner(v);
     for (int t : triangles) smooth_centre(t);
@@ -881,6 +886,13 @@ class Builder {
     }
     blend(good);
     fitted_.insert(key);
+  }
+
+  bool on_fitted_edge(int v) const {
+    if (fitted_.empty()) return false;
+    for (int w : out_.linear.neighbours(v))
+      if (fitted_.count(mesh::edge_key(v, w))) return true;
+    return false;
   }
 
   int fitted_edge_of(const mesh::Triangle& tri) const {
