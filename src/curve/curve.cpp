@@ -346,13 +346,16 @@ class Builder {
   // Tries a local operation of the linear mesh on the curved mesh. `operation` changes
   // out_.linear (under its journal) and returns the triangles it changed or made, or nothing if
   // it refused. Those triangles get their P3 nodes (new edges on their curve where they can
-  // follow it, centres chosen as in step 2); the operation is kept only if none of them has two
-  // primary edges, all are certified and their worst energy is below that of `before`, the
-  // triangles it replaces. Otherwise everything is put back.
+  // follow it, centres chosen as in step 2) and new vertices settle; the operation is kept only
+  // if none of them has two primary edges and, compared with `before` (the triangles it
+  // replaces), fewer of them are uncertified (validity first: triangles flat to round-off leave
+  // a mesh that cannot be written), or all are certified and their worst energy is lower.
+  // Otherwise everything is put back.
   template <class Operation>
   bool try_operation(const std::vector<int>& before, const Operation& operation) {
     TriMesh& m = out_.linear;
     double worst_before = 0;
+    int invalid_before = 0;
     std::vector<std::uint64_t> old_edges;
     struct Saved {
       int t;
@@ -362,6 +365,7 @@ class Builder {
     std::vector<Saved> saved;
     for (int t : before) {
       worst_before = std::max(worst_before, energy(t));
+      invalid_before += scaled_[t] <= 0;
       saved.push_back({t, out_.triangles[t], scaled_[t]});
       const auto& tri = m.triangle(t);
       for (int i = 0; i < 3; ++i) old_edges.push_back(mesh::edge_key(tri[i], tri[(i + 1) % 3]));
@@ -381,10 +385,19 @@ class Builder {
       scaled_.resize(m.triangle_slots(), -1.0);
       for (int t : *after) ok = ok && place_triangle(t);
       for (int v = static_cast<int>(vertices0); ok && v < m.vertex_count(); ++v) settle_vertex(v, *after);
-      double worst_after = 0;
-      if (ok)
-        for (int t : *after) worst_after = std::max(worst_after, energy(t));
-      ok = ok && worst_after < worst_before && certify_all(*after);
+      if (ok) {
+        double worst_after = 0;
+        int invalid_after = 0;
+        std::vector<std::optional<double>> certified;
+        for (int t : *after) {
+          worst_after = std::max(worst_after, energy(t));
+          certified.push_back(certify(t));
+          invalid_after += !certified.back();
+        }
+        ok = invalid_after < invalid_before || (invalid_after == 0 && worst_after < worst_before);
+        if (ok)
+          for (std::size_t k = 0; k < after->size(); ++k) scaled_[(*after)[k]] = certified[k].value_or(-1.0);
+      }
     }
     if (!ok) {
       m.rollback();

@@ -18,9 +18,11 @@
 //     centre node anywhere, each move certified again. Then, for triangles still above, the local
 //     operations of §4.1 on the curved mesh: a swap of one of its edges, else a collapse, else a
 //     split of one edge or of the two edges at one corner, the new vertices smoothed; the touched
-//     triangles get their P3 nodes and are certified, and the operation is kept only if their
-//     worst energy went down (the linear mesh's journal takes a refused one back). Passes stop
-//     at the stop energy or after Options::max_smoothing_passes.
+//     triangles get their P3 nodes and are certified, and the operation is kept only if fewer
+//     of them are uncertified than before, or all are and their worst energy went down (the
+//     linear mesh's journal takes a refused one back). Passes stop at the stop energy or after
+//     Options::max_smoothing_passes. These run after step 5's first attempt, which may leave a
+//     poor triangle.
 //  5. A straightened edge gets its free opposite corners moved out of the curve's way; failing
 //     that, it is fitted: bent towards the curve as far as its triangles stay certified and within
 //     the stop energy. The distance left from every fitted or straight edge to its curve is

@@ -321,6 +321,57 @@ TEST(Curve, AThinCornerBetweenACurveAndASecondaryLineIsSplitAndOpened) {
   for (int v : {a, b, c, d, e, g}) EXPECT_EQ(out.nodes[v], m.point(v));  // fixed, and numbered first
 }
 
+TEST(Curve, TrianglesFlatToRoundOffAreRemovedByTheOperations) {
+  // A fan of triangles between a line of vertices at y0 and a vertex q 3e-14 above it and beyond
+  // its end (features that nearly coincide, as drawings have them; the numbers are from
+  // openclipart's dino_architetto_francesc_05): each triangle is valid (exactly
+  // counter-clockwise), but its edge nodes, rounded to doubles, leave the cubic map without a
+  // certificate. Step 4's operations (no swap of the secondary line's edges) remove them until
+  // every element is certified. (The drawing itself, where only operations that leave fewer
+  // uncertified triangles lead there, is meshed by the corpus_mesh_hard test.)
+  mesh::TriMesh m;
+  mesh::VertexTag fixed, secondary;
+  fixed.kind = mesh::VertexKind::fixed;
+  secondary.kind = mesh::VertexKind::secondary;
+  const double y0 = 134.03699999999998, y1 = 134.03700000000001;
+  // The line: a secondary input segment, fixed ends, seven vertices between (no swap can take
+  // its edges away); q above its end, s below, u on top.
+  std::vector<int> line;
+  for (int k = 0; k <= 8; ++k) line.push_back(m.add_vertex({147.624 + 0.35925 * k, y0}, k == 0 || k == 8 ? fixed : secondary));
+  const int q = m.add_vertex({151.454, y1}, fixed), s = m.add_vertex({149.5, 130}, fixed);
+  const int u = m.add_vertex({149.5, 138}, fixed);
+  m.add_triangle(s, u, line[0]);
+  m.add_triangle(line[0], q, u);
+  for (int k = 0; k < 8; ++k) {
+    m.add_triangle(line[k], line[k + 1], q);
+    m.add_triangle(line[k], s, line[k + 1]);
+    m.set_feature(line[k], line[k + 1], {EdgeKind::secondary, -1, 0});
+  }
+  m.add_triangle(line[8], s, q);
+  ASSERT_FALSE(m.structure_error()) << *m.structure_error();
+  mesh::Constraints constraints;
+  constraints.envelope = geometry::SegmentEnvelope({{m.point(line[0]), m.point(line[8])}}, 0.01);
+
+  curve::Options none;
+  none.max_smoothing_passes = 0;
+  curve::Stats before;
+  curve::curve(m, constraints, none, &before);
+  ASSERT_GT(before.invalid_triangles, 0);
+
+  curve::Stats after;
+  const curve::CurvedMesh out = curve::curve(m, constraints, {}, &after);
+  EXPECT_EQ(after.invalid_triangles, 0);
+  EXPECT_GT(after.curved_collapses + after.curved_swaps, 0);
+  ASSERT_FALSE(out.linear.structure_error());
+  for (std::size_t t = 0; t < out.triangles.size(); ++t)
+    EXPECT_EQ(geometry::certify_jacobian_exact(nodes_of(out, t)), geometry::JacobianVerdict::positive) << t;
+  for (int v = 0; v < out.linear.vertex_count(); ++v) {
+    if (out.linear.tag(v).kind == mesh::VertexKind::fixed) {
+      EXPECT_EQ(out.nodes[v], out.linear.point(v));
+    }
+  }
+}
+
 TEST(Curve, TrianglesWithSeveralPrimaryEdgesAreSplit) {
   // One triangle whose three edges are primary (a small closed polygon meshed as one triangle)
   // inside a box: after curving, every triangle has at most one primary edge.
