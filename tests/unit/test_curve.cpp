@@ -43,6 +43,15 @@ geometry::P3Nodes nodes_of(const curve::CurvedMesh& c, std::size_t t) {
   return p;
 }
 
+// The statistics of curving without step 4 (no smoothing, no local operations).
+curve::Stats without_step4(const mesh::TriMesh& m, const mesh::Constraints& constraints) {
+  curve::Options options;
+  options.max_smoothing_passes = 0;
+  curve::Stats s;
+  curve::curve(m, constraints, options, &s);
+  return s;
+}
+
 class CurveOnExamples : public testing::TestWithParam<std::string> {};
 
 TEST_P(CurveOnExamples, CertifiedSharedAndOnTheCurves) {
@@ -178,10 +187,7 @@ TEST(Curve, SmoothingLiftsAFreeCornerAboveACurvedEdge) {
   // centre nodes) until the energy is at most 20, keeping every triangle certified.
   auto [m, constraints, a, b, c] = free_corner_above_a_curve(0.08, 0.04);
 
-  curve::Options unsmoothed;
-  unsmoothed.max_smoothing_passes = 0;
-  curve::Stats before;
-  curve::curve(m, constraints, unsmoothed, &before);
+  const curve::Stats before = without_step4(m, constraints);
   EXPECT_EQ(before.curved_edges, 1);
   EXPECT_GT(before.max_amips, 20);
   EXPECT_EQ(before.max_amips, before.max_amips_before_smoothing);
@@ -233,10 +239,7 @@ TEST(Curve, SmoothingSlidesACornerAlongItsCurve) {
   m.set_feature(a, v, {EdgeKind::primary, 0, 0, 0.0, 0.04});
   m.set_feature(v, b, {EdgeKind::primary, 0, 0, 1.0, 0.04});  // t_lo belongs to b (b < v)
 
-  curve::Options unsmoothed;
-  unsmoothed.max_smoothing_passes = 0;
-  curve::Stats before;
-  curve::curve(m, constraints, unsmoothed, &before);
+  const curve::Stats before = without_step4(m, constraints);
   ASSERT_EQ(before.curved_edges, 2);
   ASSERT_GT(before.max_amips, 20);
 
@@ -282,10 +285,7 @@ TEST(Curve, AThinCornerBetweenACurveAndASecondaryLineIsSplitAndOpened) {
   m.set_feature(a, b, {EdgeKind::secondary, -1, 0});
   ASSERT_FALSE(m.structure_error());
 
-  curve::Options smoothing_only;  // no pass: neither smoothing nor operations
-  smoothing_only.max_smoothing_passes = 0;
-  curve::Stats before;
-  curve::curve(m, constraints, smoothing_only, &before);
+  const curve::Stats before = without_step4(m, constraints);
   ASSERT_EQ(before.curved_edges, 1);
   ASSERT_GT(before.max_amips, 20);
 
@@ -352,10 +352,7 @@ TEST(Curve, TrianglesFlatToRoundOffAreRemovedByTheOperations) {
   mesh::Constraints constraints;
   constraints.envelope = geometry::SegmentEnvelope({{m.point(line[0]), m.point(line[8])}}, 0.01);
 
-  curve::Options none;
-  none.max_smoothing_passes = 0;
-  curve::Stats before;
-  curve::curve(m, constraints, none, &before);
+  const curve::Stats before = without_step4(m, constraints);
   ASSERT_GT(before.invalid_triangles, 0);
 
   curve::Stats after;
