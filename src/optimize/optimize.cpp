@@ -267,9 +267,26 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Op
   }
   if (s.stop_reason.empty()) s.stop_reason = "iteration limit";
 
-  // Vertices that kept an exact position get one more chance, with the mesh as it is now.
-  for (int v = 0; v < m.vertex_count(); ++v)
-    if (m.has_exact(v)) mesh::round_vertex(m, c, v);
+  // Vertices that kept an exact position get one more chance, with the mesh as it is now; one
+  // that still cannot be rounded (it rounds onto a neighbour: features closer than a double can
+  // tell) is collapsed into its nearest neighbour that takes it, whatever the energy: a mesh with
+  // a vertex that has no double position cannot be written, and the curve stage's operations
+  // improve what the collapse leaves.
+  bool collapsed = false;
+  for (int v = 0; v < m.vertex_count(); ++v) {
+    if (!m.has_exact(v) || m.triangles_of(v).empty() || mesh::round_vertex(m, c, v)) continue;
+    std::vector<int> near = m.neighbours(v);
+    std::stable_sort(near.begin(), near.end(), [&](int x, int y) {
+      return (m.point(x) - m.point(v)).squaredNorm() < (m.point(y) - m.point(v)).squaredNorm();
+    });
+    for (int w : near)
+      if (mesh::collapse_edge(m, c, v, w, std::numeric_limits<double>::infinity())) {
+        ++s.collapses;
+        collapsed = true;
+        break;
+      }
+  }
+  if (collapsed) m.compact();  // the collapsed vertices (and their exact positions) go
   s.exact_left = m.exact_vertex_count();
   for (int v = 0; v < m.vertex_count(); ++v)
     if (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) ++s.unprojected;
