@@ -121,13 +121,7 @@ class Builder {
     scaled_.assign(order.size(), 1.0);
     for (std::size_t k = 0; k < order.size(); ++k) {
       const auto& tri = m.triangle(order[k]);
-      std::array<int, 10> ids{};
-      for (int i = 0; i < 3; ++i) {
-        ids[i] = vertex_node_[tri[i]];
-        const auto [first, second] = edge_nodes(tri[i], tri[(i + 1) % 3]);
-        ids[3 + 2 * i] = first;
-        ids[4 + 2 * i] = second;
-      }
+      std::array<int, 10> ids = corner_and_edge_nodes(tri);
       ids[9] = static_cast<int>(out_.nodes.size());
       if (curved_edge_of(tri) >= 0) {
         s_.alternative_centres += choice[k] > 0;
@@ -240,12 +234,7 @@ class Builder {
     std::sort(corners.begin(), corners.end());
     corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
     int moved = 0;
-    for (int v : corners) {
-      const mesh::VertexTag& tag = out_.linear.tag(v);
-      if (on_fitted_edge(v)) continue;  // its edge's bend was fitted for where it is
-      if (tag.kind == mesh::VertexKind::free || tag.kind == mesh::VertexKind::secondary) moved += smooth_corner(v);
-      else if (tag.kind == mesh::VertexKind::primary && tag.on_curve) moved += smooth_curve_corner(v);
-    }
+    for (int v : corners) moved += move_corner(v);
     for (int t : bad) moved += smooth_centre(t);
     s_.smoothing_moves += moved;
     return moved;
@@ -421,14 +410,21 @@ class Builder {
     return true;
   }
 
-  // A vertex made by a split moves to where its star is best (free vertices in the plane,
+  // Corner v moves to where its star is best, as its kind allows: free vertices in the plane,
   // secondary ones in the plane while their secondary edges stay in the ε-envelope, primary ones
-  // along their curve; others stay), then the centres of `triangles` do.
-  void settle_vertex(int v, const std::vector<int>& triangles) {
+  // on their curve along it; others, and the ends of a fitted edge (its bend was fitted for where
+  // they are), stay. Returns 1 if it moved.
+  int move_corner(int v) {
     const mesh::VertexTag& tag = out_.linear.tag(v);
-    if (on_fitted_edge(v)) return;
-    if (tag.kind == mesh::VertexKind::free || tag.kind == mesh::VertexKind::secondary) smooth_corner(v);
-    else if (tag.kind == mesh::VertexKind::primary && tag.on_curve) smooth_curve_corner(v);
+    if (on_fitted_edge(v)) return 0;
+    if (tag.kind == mesh::VertexKind::free || tag.kind == mesh::VertexKind::secondary) return smooth_corner(v);
+    if (tag.kind == mesh::VertexKind::primary && tag.on_curve) return smooth_curve_corner(v);
+    return 0;
+  }
+
+  // A vertex made by a split moves (move_corner), then the centres of `triangles` do.
+  void settle_vertex(int v, const std::vector<int>& triangles) {
+    move_corner(v);
     for (int t : triangles) smooth_centre(t);
   }
 
@@ -438,14 +434,8 @@ class Builder {
     const TriMesh& m = out_.linear;
     const mesh::Triangle tri = m.triangle(t);
     if (primary_edges_of(m, tri) > 1) return false;
-    std::array<int, 10> ids{};
-    for (int i = 0; i < 3; ++i) {
-      add_edge(tri[i], tri[(i + 1) % 3]);
-      ids[i] = vertex_node_[tri[i]];
-      const auto [first, second] = edge_nodes(tri[i], tri[(i + 1) % 3]);
-      ids[3 + 2 * i] = first;
-      ids[4 + 2 * i] = second;
-    }
+    for (int i = 0; i < 3; ++i) add_edge(tri[i], tri[(i + 1) % 3]);
+    std::array<int, 10> ids = corner_and_edge_nodes(tri);
     ids[9] = static_cast<int>(out_.nodes.size());
     out_.nodes.push_back((at(tri[0]) + at(tri[1]) + at(tri[2])) / 3);
     out_.triangles[t] = ids;
@@ -949,6 +939,19 @@ class Builder {
     if (!curved_.at(key)) return;
     curved_[key] = false;
     place_straight(std::min(a, b), std::max(a, b));
+  }
+
+  // The node ids of a triangle's corners and edges in Gmsh's order (the centre, ids[9], is left
+  // to the caller).
+  std::array<int, 10> corner_and_edge_nodes(const mesh::Triangle& tri) const {
+    std::array<int, 10> ids{};
+    for (int i = 0; i < 3; ++i) {
+      ids[i] = vertex_node_[tri[i]];
+      const auto [first, second] = edge_nodes(tri[i], tri[(i + 1) % 3]);
+      ids[3 + 2 * i] = first;
+      ids[4 + 2 * i] = second;
+    }
+    return ids;
   }
 
   // The two nodes of edge (a, b) in the order from a to b.
