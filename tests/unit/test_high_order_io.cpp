@@ -14,11 +14,13 @@
 #include "io/msh_reader.hpp"
 #include "io/msh_writer.hpp"
 #include "io/vtu_writer.hpp"
+#include "scratch_dir.hpp"
 
 namespace curvemesh::io {
 namespace {
 
 using geometry::Vec2;
+using testing_support::ScratchDir;
 
 // The nodes of a triangle with integer lattice corners (multiples of p), in Gmsh's order.
 std::vector<std::array<int, 2>> lattice_triangle(int p, std::array<std::array<int, 2>, 3> c) {
@@ -282,7 +284,8 @@ TEST(HighOrderMsh, NeverCrashesOnDamagedFiles) {
 
 TEST(HighOrderMsh, ReadMshNamesThePath) {
   EXPECT_THROW(read_msh("/nonexistent/dir/x.msh"), MshError);
-  const auto path = (std::filesystem::temp_directory_path() / "curvemesh_bad.msh").string();
+  const ScratchDir dir;
+  const auto path = dir / "bad.msh";
   std::ofstream(path) << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
   try {
     read_msh(path);
@@ -299,8 +302,8 @@ bool have_python(const char* modules) {
   return std::system(("/usr/bin/python3 -c 'import " + std::string(modules) + "' 2>/dev/null").c_str()) == 0;
 }
 
-int run_python(const std::string& script, const std::string& args) {
-  const auto path = (std::filesystem::temp_directory_path() / "curvemesh_high_order_io.py").string();
+int run_python(const ScratchDir& dir, const std::string& script, const std::string& args) {
+  const auto path = dir / "script.py";
   std::ofstream(path) << script;
   return std::system(("/usr/bin/python3 " + path + " " + args).c_str());
 }
@@ -309,6 +312,7 @@ int run_python(const std::string& script, const std::string& args) {
 // again and lists, per triangle and per line, the coordinates of its nodes as it read them.
 TEST(HighOrderMsh, ReadsFilesWrittenByGmsh) {
   if (!have_python("gmsh")) GTEST_SKIP() << "no python3-gmsh";
+  const ScratchDir dir;
   const std::string script = R"(
 import sys, gmsh
 out, order, version, named = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), sys.argv[4] == '1'
@@ -338,8 +342,8 @@ gmsh.finalize()
     for (const char* version : {"4.1", "2.2"})
       for (int named : {0, 1}) {
         SCOPED_TRACE("order " + std::to_string(order) + ", version " + version + (named ? ", named" : ""));
-        const auto base = (std::filesystem::temp_directory_path() / "curvemesh_gmsh_disk").string();
-        ASSERT_EQ(run_python(script, base + " " + std::to_string(order) + " " + version + " " +
+        const auto base = dir / "gmsh_disk";
+        ASSERT_EQ(run_python(dir, script, base + " " + std::to_string(order) + " " + version + " " +
                                          std::to_string(named)),
                   0);
         const HighOrderMesh m = read_msh(base + ".msh");
@@ -373,7 +377,7 @@ gmsh.finalize()
         // What we write of it Gmsh reads again with the same elements.
         write_msh(m, base + ".ours.msh");
         EXPECT_EQ(
-            run_python("import sys, gmsh\ngmsh.initialize(); gmsh.option.setNumber('General.Terminal', 0)\n"
+            run_python(dir, "import sys, gmsh\ngmsh.initialize(); gmsh.option.setNumber('General.Terminal', 0)\n"
                        "gmsh.open(sys.argv[1])\n"
                        "t, e, _ = gmsh.model.mesh.getElements(2)\n"
                        "assert list(t) == [" +
@@ -390,11 +394,10 @@ gmsh.finalize()
 TEST(HighOrderMsh, IndependentCheckerAcceptsWhatWeWrite) {
   if (!have_python("gmsh, meshio")) GTEST_SKIP() << "no python3-gmsh or python3-meshio";
   const std::string checker = std::string(CURVEMESH_EXAMPLES) + "/../tests/tools/msh_check.py";
+  const ScratchDir dir;
   for (int p = 1; p <= 3; ++p)
     for (int version : {41, 22}) {
-      const auto path = (std::filesystem::temp_directory_path() /
-                         ("curvemesh_p" + std::to_string(p) + "_" + std::to_string(version) + ".msh"))
-                            .string();
+      const auto path = dir / (std::to_string(p) + "-" + std::to_string(version) + ".msh");
       write_msh(grid(p), path, {version});
       EXPECT_EQ(std::system(("/usr/bin/python3 " + checker + " " + path + " >/dev/null").c_str()), 0) << path;
     }
@@ -427,11 +430,11 @@ assert list(m.cell_data['physical'][0]) == [4, 4, 4, 4]
 assert list(m.cell_data['quality'][0]) == [0.5, 0.25, 1.0 / 3, 1.0]
 )";
   if (!have_python("meshio, numpy")) GTEST_SKIP() << "no python3-meshio";
+  const ScratchDir dir;
   for (int p = 1; p <= 3; ++p) {
-    const auto path =
-        (std::filesystem::temp_directory_path() / ("curvemesh_p" + std::to_string(p) + ".vtu")).string();
+    const auto path = dir / ("p" + std::to_string(p) + ".vtu");
     write_vtu(grid(p, false), path, {{"quality", {0.5, 0.25, 1.0 / 3, 1.0}}});
-    EXPECT_EQ(run_python(script, path + " " + std::to_string(p)), 0) << path;
+    EXPECT_EQ(run_python(dir, script, path + " " + std::to_string(p)), 0) << path;
   }
   EXPECT_THROW(vtu_string(grid(2), {{"quality", {1.0}}}), std::logic_error);
   EXPECT_THROW(vtu_string(grid(2), {{"bad name", {1, 2, 3, 4}}}), std::logic_error);

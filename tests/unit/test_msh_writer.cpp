@@ -10,6 +10,7 @@
 
 #include "io/mesh_svg.hpp"
 #include "io/msh_writer.hpp"
+#include "scratch_dir.hpp"
 
 namespace curvemesh::io {
 namespace {
@@ -97,8 +98,9 @@ TEST(MshWriter, Deterministic) { EXPECT_EQ(msh_string(square()), msh_string(squa
 TEST(MshWriter, GmshAndMeshioReadBothVersions) {
   if (!std::filesystem::exists("/usr/bin/python3")) GTEST_SKIP() << "no system python";
   if (std::system("/usr/bin/python3 -c 'import gmsh, meshio' 2>/dev/null") != 0) GTEST_SKIP() << "gmsh or meshio missing";
+  const testing_support::ScratchDir dir;
   for (int version : {41, 22}) {
-    const auto path = (std::filesystem::temp_directory_path() / ("curvemesh_writer_" + std::to_string(version) + ".msh")).string();
+    const auto path = dir / ("writer_" + std::to_string(version) + ".msh");
     write_msh(square(), path, {version});
     const std::string script =
         "import sys, gmsh, meshio\n"

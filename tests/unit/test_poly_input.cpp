@@ -7,19 +7,23 @@
 #include <fstream>
 
 #include "features/poly_input.hpp"
+#include "scratch_dir.hpp"
 #include "svg/error.hpp"
 
 namespace curvemesh::features {
 namespace {
 
-std::string write_temp(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / ("curvemesh_poly_" + name + ".poly");
+using testing_support::ScratchDir;
+
+std::string write_temp(const ScratchDir& dir, const std::string& name, const std::string& text) {
+  const auto path = dir / (name + ".poly");
   std::ofstream(path) << text;
-  return path.string();
+  return path;
 }
 
 TEST(PolyInput, SquareWithDiagonalZeroBased) {
-  const auto f = read_poly(write_temp("square0", "# a square\n4 2 0 0\n0 0 0\n1 1 0\n\n2 1 1\n3 0 1\n"
+  const ScratchDir dir;
+  const auto f = read_poly(write_temp(dir, "square0", "# a square\n4 2 0 0\n0 0 0\n1 1 0\n\n2 1 1\n3 0 1\n"
                                                    "5 0\n0 0 1\n1 1 2\n2 2 3\n3 3 0\n4 0 2\n0\n"),
                            {});
   EXPECT_EQ(f.segments.size(), 5u);
@@ -32,7 +36,8 @@ TEST(PolyInput, SquareWithDiagonalZeroBased) {
 }
 
 TEST(PolyInput, OneBasedWithMarkersAttributesHolesAndComments) {
-  const auto f = read_poly(write_temp("square1", "4 2 1 1  # attributes and markers\n1 0 0 7 1\n2 2 0 7 1\n3 2 2 7 1\n"
+  const ScratchDir dir;
+  const auto f = read_poly(write_temp(dir, "square1", "4 2 1 1  # attributes and markers\n1 0 0 7 1\n2 2 0 7 1\n3 2 2 7 1\n"
                                                    "4 0 2 7 1\n3 1\n1 1 2 1\n2 2 3 1\n3 2 3 0  # duplicate\n"
                                                    "1\n1 0.5 0.5\n"),
                            {});
@@ -42,14 +47,15 @@ TEST(PolyInput, OneBasedWithMarkersAttributesHolesAndComments) {
 }
 
 TEST(PolyInput, ZeroLengthSegmentBecomesAPoint) {
-  const auto f = read_poly(write_temp("zero", "3 2 0 0\n0 0 0\n1 1 0\n2 1 0\n2 0\n0 0 1\n1 1 2\n"), {});
+  const ScratchDir dir;
+  const auto f = read_poly(write_temp(dir, "zero", "3 2 0 0\n0 0 0\n1 1 0\n2 1 0\n2 0\n0 0 1\n1 1 2\n"), {});
   EXPECT_EQ(f.segments.size(), 1u);
   ASSERT_EQ(f.points.size(), 1u);
   EXPECT_EQ(f.points[0].p, Vec2(1, 0));
 }
 
-void expect_error(const std::string& name, const std::string& text, const std::string& fragment, int line) {
-  const std::string path = write_temp(name, text);
+void expect_error(const ScratchDir& dir, const std::string& name, const std::string& text, const std::string& fragment, int line) {
+  const std::string path = write_temp(dir, name, text);
   try {
     read_poly(path, {});
     FAIL() << name << ": accepted";
@@ -60,17 +66,18 @@ void expect_error(const std::string& name, const std::string& text, const std::s
 }
 
 TEST(PolyInput, MalformedFilesNameTheLine) {
-  expect_error("truncated", "3 2 0 0\n1 0 0\n2 1 0\n", "fewer lines", 1);
-  expect_error("dimension", "3 3 0 0\n1 0 0 0\n", "dimension 3", 1);
-  expect_error("node_file", "0 2 0 0\n1 0\n1 1 2\n", "separate .node", 1);
-  expect_error("word", "2 2 0 0\n1 0 zero\n2 1 0\n0\n", "expected a number", 2);
-  expect_error("infinite", "2 2 0 0\n1 0 1e999\n2 1 0\n0\n", "not a finite", 2);
-  expect_error("nan", "2 2 0 0\n1 0 nan\n2 1 0\n0\n", "not a finite", 2);
-  expect_error("range", "2 2 0 0\n1 0 0\n2 1 0\n1 0\n1 1 3\n", "out of range", 5);
-  expect_error("negative", "2 2 0 0\n1 0 0\n2 1 0\n-1 0\n", "negative", 4);
-  expect_error("huge", "2000000000 2 0 0\n1 0 0\n", "fewer lines", 1);
-  expect_error("sequence", "2 2 0 0\n1 0 0\n5 1 0\n0\n", "out of sequence", 3);
-  expect_error("no_segments", "2 2 0 0\n1 0 0\n2 1 0\n", "file ends", 3);
+  const ScratchDir dir;
+  expect_error(dir, "truncated", "3 2 0 0\n1 0 0\n2 1 0\n", "fewer lines", 1);
+  expect_error(dir, "dimension", "3 3 0 0\n1 0 0 0\n", "dimension 3", 1);
+  expect_error(dir, "node_file", "0 2 0 0\n1 0\n1 1 2\n", "separate .node", 1);
+  expect_error(dir, "word", "2 2 0 0\n1 0 zero\n2 1 0\n0\n", "expected a number", 2);
+  expect_error(dir, "infinite", "2 2 0 0\n1 0 1e999\n2 1 0\n0\n", "not a finite", 2);
+  expect_error(dir, "nan", "2 2 0 0\n1 0 nan\n2 1 0\n0\n", "not a finite", 2);
+  expect_error(dir, "range", "2 2 0 0\n1 0 0\n2 1 0\n1 0\n1 1 3\n", "out of range", 5);
+  expect_error(dir, "negative", "2 2 0 0\n1 0 0\n2 1 0\n-1 0\n", "negative", 4);
+  expect_error(dir, "huge", "2000000000 2 0 0\n1 0 0\n", "fewer lines", 1);
+  expect_error(dir, "sequence", "2 2 0 0\n1 0 0\n5 1 0\n0\n", "out of sequence", 3);
+  expect_error(dir, "no_segments", "2 2 0 0\n1 0 0\n2 1 0\n", "file ends", 3);
   EXPECT_THROW(read_poly("/nonexistent/x.poly", {}), svg::InputError);
 }
 
