@@ -4,26 +4,12 @@
 // whole stage should grow like n log n.
 #include <benchmark/benchmark.h>
 
-#include <cmath>
-#include <random>
-
 #include "features/features.hpp"
+#include "random_soup.hpp"
 
 namespace {
 
-curvemesh::svg::FeatureSoup random_soup(int n, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0.0, 1.0), v(-1.0, 1.0);
-  const double size = 3.0 / std::sqrt(double(n));
-  curvemesh::svg::FeatureSoup soup;
-  soup.sources.push_back({"path", "", 0, 1});
-  for (int i = 0; i < n; ++i) {
-    const curvemesh::geometry::Vec2 c(u(rng), u(rng));
-    auto q = [&] { return curvemesh::geometry::Vec2(c.x() + size * v(rng), c.y() + size * v(rng)); };
-    soup.curves.push_back({{q(), q(), q(), q()}, 0, {}, {}, {}, {}});
-  }
-  return soup;
-}
+using curvemesh::bench::random_soup;
 
 void BM_FeatureProcessing(benchmark::State& state) {
   const auto soup = random_soup(static_cast<int>(state.range(0)), 7);

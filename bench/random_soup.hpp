@@ -1,0 +1,27 @@
+// The synthetic input of the features and meshing benchmarks: n random cubics whose size shrinks
+// like 1/√n inside the unit square, so the number of crossings per curve stays about the same as
+// n grows, as in a drawing with more detail.
+#pragma once
+
+#include <cmath>
+#include <random>
+
+#include "svg/feature_soup.hpp"
+
+namespace curvemesh::bench {
+
+inline svg::FeatureSoup random_soup(int n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0), v(-1.0, 1.0);
+  const double size = 3.0 / std::sqrt(double(n));
+  svg::FeatureSoup soup;
+  soup.sources.push_back({"path", "", 0, 1});
+  for (int i = 0; i < n; ++i) {
+    const geometry::Vec2 c(u(rng), u(rng));
+    auto q = [&] { return geometry::Vec2(c.x() + size * v(rng), c.y() + size * v(rng)); };
+    soup.curves.push_back({{q(), q(), q(), q()}, 0, {}, {}, {}, {}});
+  }
+  return soup;
+}
+
+}  // namespace curvemesh::bench
