@@ -65,22 +65,24 @@ Eigen::VectorXd load_vector(const Geometry& geometry, const Space& space, const 
 
 int Dirichlet::fixed_count() const { return static_cast<int>(std::count(fixed.begin(), fixed.end(), 1)); }
 
-Eigen::VectorXd solve(const SparseMatrix& a, const Eigen::VectorXd& b, const Dirichlet& dirichlet,
-                      bool symmetric_positive) {
+Eigen::MatrixXd solve(const SparseMatrix& a, const Eigen::MatrixXd& b, const std::vector<char>& fixed,
+                      const Eigen::MatrixXd& values, bool symmetric_positive) {
   const int n = static_cast<int>(a.rows());
-  if (a.cols() != n || b.size() != n || static_cast<int>(dirichlet.fixed.size()) != n)
+  const auto k = b.cols();
+  if (a.cols() != n || b.rows() != n || static_cast<int>(fixed.size()) != n || values.rows() != n ||
+      values.cols() != k)
     throw std::invalid_argument("solve: sizes do not match");
   std::vector<int> free_index(n, -1);
   int m = 0;
   for (int i = 0; i < n; ++i)
-    if (!dirichlet.fixed[i]) free_index[i] = m++;
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+    if (!fixed[i]) free_index[i] = m++;
+  Eigen::MatrixXd x = Eigen::MatrixXd::Zero(n, k);
   for (int i = 0; i < n; ++i)
-    if (dirichlet.fixed[i]) x[i] = dirichlet.values[i];
+    if (fixed[i]) x.row(i) = values.row(i);
   if (m == 0) return x;
-  Eigen::VectorXd rhs(m);
+  Eigen::MatrixXd rhs(m, k);
   for (int i = 0; i < n; ++i)
-    if (free_index[i] >= 0) rhs[free_index[i]] = b[i];
+    if (free_index[i] >= 0) rhs.row(free_index[i]) = b.row(i);
   Triplets triplets;
   triplets.reserve(a.nonZeros());
   for (int col = 0; col < a.outerSize(); ++col)
@@ -90,11 +92,11 @@ Eigen::VectorXd solve(const SparseMatrix& a, const Eigen::VectorXd& b, const Dir
       if (free_index[c] >= 0)
         triplets.emplace_back(free_index[r], free_index[c], it.value());
       else
-        rhs[free_index[r]] -= it.value() * x[c];
+        rhs.row(free_index[r]) -= it.value() * x.row(c);
     }
   SparseMatrix reduced(m, m);
   reduced.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::VectorXd y;
+  Eigen::MatrixXd y;
   if (symmetric_positive) {
     // LLᵀ always: CHOLMOD's automatic mode may choose LDLᵀ, which factors an indefinite matrix
     // without complaint; LLᵀ reports it.
@@ -110,8 +112,13 @@ Eigen::VectorXd solve(const SparseMatrix& a, const Eigen::VectorXd& b, const Dir
   }
   if (!y.allFinite()) throw std::runtime_error("the linear solve gave non-finite values (singular system)");
   for (int i = 0; i < n; ++i)
-    if (free_index[i] >= 0) x[i] = y[free_index[i]];
+    if (free_index[i] >= 0) x.row(i) = y.row(free_index[i]);
   return x;
+}
+
+Eigen::VectorXd solve(const SparseMatrix& a, const Eigen::VectorXd& b, const Dirichlet& dirichlet,
+                      bool symmetric_positive) {
+  return solve(a, Eigen::MatrixXd(b), dirichlet.fixed, Eigen::MatrixXd(dirichlet.values), symmetric_positive).col(0);
 }
 
 std::vector<std::pair<int, int>> boundary_edges(const io::HighOrderMesh& mesh) {

@@ -35,6 +35,12 @@ struct Dirichlet {
 Eigen::VectorXd solve(const SparseMatrix& a, const Eigen::VectorXd& b, const Dirichlet& dirichlet,
                       bool symmetric_positive);
 
+// The same for several problems that share the matrix and which unknowns are fixed: column k of b
+// and of `values` (read where fixed) is problem k, column k of the result its solution. One
+// factorization serves them all.
+Eigen::MatrixXd solve(const SparseMatrix& a, const Eigen::MatrixXd& b, const std::vector<char>& fixed,
+                      const Eigen::MatrixXd& values, bool symmetric_positive);
+
 // The domain's triangles whose edges are on no other triangle of the mesh: (triangle, local edge).
 std::vector<std::pair<int, int>> boundary_edges(const io::HighOrderMesh& mesh);
 

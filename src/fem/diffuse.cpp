@@ -117,20 +117,24 @@ DiffusionResult diffuse(const Geometry& geometry, const Space& space, const std:
   std::vector<char> held(n, 0);
   for (int i = 0; i < n; ++i)
     if (count[i] > 0) held[component[i]] = 1;
-  std::array<Dirichlet, 3> dirichlet{Dirichlet(n), Dirichlet(n), Dirichlet(n)};
+  // The three channels share which unknowns are held: one pattern, a column of values each.
+  std::vector<char> fixed(n, 0);
+  Eigen::MatrixX3d values = Eigen::MatrixX3d::Zero(n, 3);
   for (int i = 0; i < n; ++i) {
     if (count[i] > 0) {
-      for (int k = 0; k < 3; ++k) dirichlet[k].set(i, sum(i, k) / count[i]);
+      fixed[i] = 1;
+      values.row(i) = sum.row(i) / count[i];
       ++r.fixed;
     } else if (!held[component[i]]) {
-      for (int k = 0; k < 3; ++k) dirichlet[k].set(i, options.background[k]);
+      fixed[i] = 1;
+      for (int k = 0; k < 3; ++k) values(i, k) = options.background[k];
     }
   }
   for (int i = 0; i < n; ++i) r.background_components += component[i] == i && !held[i];
   const auto t1 = Clock::now();
   r.assembly_seconds = std::chrono::duration<double>(t1 - t0).count();
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
-  for (int k = 0; k < 3; ++k) r.channel[k] = solve(a, zero, dirichlet[k], true);
+  const Eigen::MatrixXd x = solve(a, Eigen::MatrixXd::Zero(n, 3), fixed, values, true);
+  for (int k = 0; k < 3; ++k) r.channel[k] = x.col(k);
   r.solve_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
   return r;
 }

@@ -129,6 +129,38 @@ TEST(Poisson, ReproducesQuadraticsExactly) {
   }
 }
 
+// Two problems with one matrix and one set of held unknowns, solved together: each column is
+// its own quadratic (so columns are neither mixed nor shifted), with either factorization.
+TEST(Poisson, SeveralProblemsShareOneFactorization) {
+  const std::array<ScalarFunction, 2> u{
+      [](const Vec2& p) { return 1 + 2 * p.x() - p.y() + 3 * p.x() * p.x() + p.x() * p.y() - 2 * p.y() * p.y(); },
+      [](const Vec2& p) { return -4 + p.y() + 0.5 * p.x() * p.x() + 2 * p.y() * p.y(); }};
+  const std::array<double, 2> minus_laplacian{-(6.0 - 4.0), -(1.0 + 4.0)};
+  const io::HighOrderMesh m = unit_square(4, 3);
+  const Geometry g(m);
+  const Space s(m, 2);
+  const SparseMatrix k = stiffness_matrix(g, s);
+  Eigen::MatrixXd b(s.size(), 2), values(s.size(), 2);
+  std::vector<char> fixed;
+  for (int c = 0; c < 2; ++c) {
+    b.col(c) = load_vector(g, s, [&](const Vec2&) { return minus_laplacian[c]; });
+    Dirichlet d(s.size());
+    set_on_edges(g, s, boundary_edges(m), u[c], d);
+    values.col(c) = d.values;
+    if (c == 0) fixed = d.fixed;
+    ASSERT_EQ(d.fixed, fixed);
+  }
+  for (bool cholmod : {true, false}) {
+    const Eigen::MatrixXd x = solve(k, b, fixed, values, cholmod);
+    ASSERT_EQ(x.cols(), 2);
+    for (int c = 0; c < 2; ++c) {
+      EXPECT_LT(l2_error(g, s, x.col(c), u[c]), 1e-12) << "column " << c << (cholmod ? ", CHOLMOD" : ", UMFPACK");
+      EXPECT_GT(l2_error(g, s, x.col(c), u[1 - c]), 1e-2) << "column " << c;
+    }
+  }
+  EXPECT_THROW(solve(k, b, fixed, values.leftCols(1), true), std::invalid_argument);
+}
+
 TEST(Geometry, InverseFindsTheReferencePointOfACurvedTriangle) {
   io::HighOrderMesh m = unit_square(1, 3);
   // Bend the diagonal's inner nodes (shared by both triangles) a little.
