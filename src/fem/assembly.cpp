@@ -118,7 +118,8 @@ Eigen::MatrixXd solve(const SparseMatrix& a, const Eigen::MatrixXd& b, const std
 
 Eigen::VectorXd solve(const SparseMatrix& a, const Eigen::VectorXd& b, const Dirichlet& dirichlet,
                       bool symmetric_positive) {
-  return solve(a, Eigen::MatrixXd(b), dirichlet.fixed, Eigen::MatrixXd(dirichlet.values), symmetric_positive).col(0);
+  return solve(a, Eigen::MatrixXd(b), dirichlet.fixed, Eigen::MatrixXd(dirichlet.values), symmetric_positive)
+      .col(0);
 }
 
 std::vector<std::pair<int, int>> boundary_edges(const io::HighOrderMesh& mesh) {

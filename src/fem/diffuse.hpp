@@ -73,7 +73,8 @@ struct DiffusionResult {
 
 // Solves the Laplace equation per channel on `geometry` (a cut mesh, cubic or straight) with
 // `space`, the unknowns on the given edges held at their colours (an unknown on several edges,
-// such as a cut's loose end, at the mean of theirs). One CHOLMOD factorization for the three channels.
+// such as a cut's loose end, at the mean of theirs). One CHOLMOD factorization serves the three
+// channels.
 DiffusionResult diffuse(const Geometry& geometry, const Space& space, const std::vector<ColouredEdge>& sides,
                         const DiffuseOptions& options = {});
 

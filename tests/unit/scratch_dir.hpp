@@ -4,7 +4,6 @@
 // with a unique name and removed with everything in it when the test ends.
 #pragma once
 
-#include <gtest/gtest.h>
 #include <stdlib.h>
 
 #include <filesystem>

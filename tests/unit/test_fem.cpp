@@ -133,7 +133,9 @@ TEST(Poisson, ReproducesQuadraticsExactly) {
 // its own quadratic (so columns are neither mixed nor shifted), with either factorization.
 TEST(Poisson, SeveralProblemsShareOneFactorization) {
   const std::array<ScalarFunction, 2> u{
-      [](const Vec2& p) { return 1 + 2 * p.x() - p.y() + 3 * p.x() * p.x() + p.x() * p.y() - 2 * p.y() * p.y(); },
+      [](const Vec2& p) {
+        return 1 + 2 * p.x() - p.y() + 3 * p.x() * p.x() + p.x() * p.y() - 2 * p.y() * p.y();
+      },
       [](const Vec2& p) { return -4 + p.y() + 0.5 * p.x() * p.x() + 2 * p.y() * p.y(); }};
   const std::array<double, 2> minus_laplacian{-(6.0 - 4.0), -(1.0 + 4.0)};
   const io::HighOrderMesh m = unit_square(4, 3);
@@ -154,7 +156,8 @@ TEST(Poisson, SeveralProblemsShareOneFactorization) {
     const Eigen::MatrixXd x = solve(k, b, fixed, values, cholmod);
     ASSERT_EQ(x.cols(), 2);
     for (int c = 0; c < 2; ++c) {
-      EXPECT_LT(l2_error(g, s, x.col(c), u[c]), 1e-12) << "column " << c << (cholmod ? ", CHOLMOD" : ", UMFPACK");
+      EXPECT_LT(l2_error(g, s, x.col(c), u[c]), 1e-12)
+          << "column " << c << (cholmod ? ", CHOLMOD" : ", UMFPACK");
       EXPECT_GT(l2_error(g, s, x.col(c), u[1 - c]), 1e-2) << "column " << c;
     }
   }

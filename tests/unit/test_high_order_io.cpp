@@ -343,9 +343,10 @@ gmsh.finalize()
       for (int named : {0, 1}) {
         SCOPED_TRACE("order " + std::to_string(order) + ", version " + version + (named ? ", named" : ""));
         const auto base = dir / "gmsh_disk";
-        ASSERT_EQ(run_python(dir, script, base + " " + std::to_string(order) + " " + version + " " +
-                                         std::to_string(named)),
-                  0);
+        ASSERT_EQ(
+            run_python(dir, script,
+                       base + " " + std::to_string(order) + " " + version + " " + std::to_string(named)),
+            0);
         const HighOrderMesh m = read_msh(base + ".msh");
         EXPECT_EQ(m.order, order);
         std::ifstream reference(base + ".txt");
@@ -377,7 +378,8 @@ gmsh.finalize()
         // What we write of it Gmsh reads again with the same elements.
         write_msh(m, base + ".ours.msh");
         EXPECT_EQ(
-            run_python(dir, "import sys, gmsh\ngmsh.initialize(); gmsh.option.setNumber('General.Terminal', 0)\n"
+            run_python(dir,
+                       "import sys, gmsh\ngmsh.initialize(); gmsh.option.setNumber('General.Terminal', 0)\n"
                        "gmsh.open(sys.argv[1])\n"
                        "t, e, _ = gmsh.model.mesh.getElements(2)\n"
                        "assert list(t) == [" +

@@ -23,8 +23,9 @@ std::string write_temp(const ScratchDir& dir, const std::string& name, const std
 
 TEST(PolyInput, SquareWithDiagonalZeroBased) {
   const ScratchDir dir;
-  const auto f = read_poly(write_temp(dir, "square0", "# a square\n4 2 0 0\n0 0 0\n1 1 0\n\n2 1 1\n3 0 1\n"
-                                                   "5 0\n0 0 1\n1 1 2\n2 2 3\n3 3 0\n4 0 2\n0\n"),
+  const auto f = read_poly(write_temp(dir, "square0",
+                                      "# a square\n4 2 0 0\n0 0 0\n1 1 0\n\n2 1 1\n3 0 1\n"
+                                      "5 0\n0 0 1\n1 1 2\n2 2 3\n3 3 0\n4 0 2\n0\n"),
                            {});
   EXPECT_EQ(f.segments.size(), 5u);
   EXPECT_TRUE(f.sections.empty());
@@ -37,9 +38,10 @@ TEST(PolyInput, SquareWithDiagonalZeroBased) {
 
 TEST(PolyInput, OneBasedWithMarkersAttributesHolesAndComments) {
   const ScratchDir dir;
-  const auto f = read_poly(write_temp(dir, "square1", "4 2 1 1  # attributes and markers\n1 0 0 7 1\n2 2 0 7 1\n3 2 2 7 1\n"
-                                                   "4 0 2 7 1\n3 1\n1 1 2 1\n2 2 3 1\n3 2 3 0  # duplicate\n"
-                                                   "1\n1 0.5 0.5\n"),
+  const auto f = read_poly(write_temp(dir, "square1",
+                                      "4 2 1 1  # attributes and markers\n1 0 0 7 1\n2 2 0 7 1\n3 2 2 7 1\n"
+                                      "4 0 2 7 1\n3 1\n1 1 2 1\n2 2 3 1\n3 2 3 0  # duplicate\n"
+                                      "1\n1 0.5 0.5\n"),
                            {});
   EXPECT_EQ(f.segments.size(), 2u);  // the duplicate is kept once
   ASSERT_EQ(f.points.size(), 1u);    // vertex 4 is used by no segment
@@ -54,7 +56,8 @@ TEST(PolyInput, ZeroLengthSegmentBecomesAPoint) {
   EXPECT_EQ(f.points[0].p, Vec2(1, 0));
 }
 
-void expect_error(const ScratchDir& dir, const std::string& name, const std::string& text, const std::string& fragment, int line) {
+void expect_error(const ScratchDir& dir, const std::string& name, const std::string& text,
+                  const std::string& fragment, int line) {
   const std::string path = write_temp(dir, name, text);
   try {
     read_poly(path, {});
