@@ -22,6 +22,14 @@ namespace {
 using mesh::EdgeKind;
 using mesh::TriMesh;
 
+// The union of two lists of ids, sorted, each once.
+std::vector<int> sorted_union(std::vector<int> a, const std::vector<int>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  std::sort(a.begin(), a.end());
+  a.erase(std::unique(a.begin(), a.end()), a.end());
+  return a;
+}
+
 bool is_primary(const TriMesh& m, int a, int b) {
   const mesh::EdgeFeature* f = m.feature(a, b);
   return f && f->kind == EdgeKind::primary;
@@ -311,19 +319,12 @@ class Builder {
     for (int i = 0; i < 3; ++i) {
       // The corner tri[i] between edges (tri[i], tri[i+1]) and (tri[i+2], tri[i]).
       const int a = tri[i], b = tri[(i + 1) % 3], c = tri[(i + 2) % 3];
-      std::vector<int> before = m.edge_triangles(a, b), other = m.edge_triangles(c, a);
-      before.insert(before.end(), other.begin(), other.end());
-      std::sort(before.begin(), before.end());
-      before.erase(std::unique(before.begin(), before.end()), before.end());
+      const std::vector<int> before = sorted_union(m.edge_triangles(a, b), m.edge_triangles(c, a));
       if (try_operation(before, [&]() -> std::optional<std::vector<int>> {
             const int m1 = split(a, b);
             const int m2 = m1 < 0 ? -1 : split(c, a);
             if (m2 < 0) return std::nullopt;
-            std::vector<int> changed = m.triangles_of(m1);
-            changed.insert(changed.end(), m.triangles_of(m2).begin(), m.triangles_of(m2).end());
-            std::sort(changed.begin(), changed.end());
-            changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
-            return changed;
+            return sorted_union(m.triangles_of(m1), m.triangles_of(m2));
           })) {
         s_.curved_splits += 2;
         return 1;
@@ -968,13 +969,9 @@ class Builder {
   }
 
   geometry::P3Nodes element(const mesh::Triangle& tri) const {
+    const std::array<int, 10> ids = corner_and_edge_nodes(tri);
     geometry::P3Nodes p;
-    for (int i = 0; i < 3; ++i) {
-      p[i] = at(tri[i]);
-      const auto [first, second] = edge_nodes(tri[i], tri[(i + 1) % 3]);
-      p[3 + 2 * i] = out_.nodes[first];
-      p[4 + 2 * i] = out_.nodes[second];
-    }
+    for (int i = 0; i < 9; ++i) p[i] = out_.nodes[ids[i]];
     p[9] = (p[0] + p[1] + p[2]) / 3;
     return p;
   }

@@ -19,9 +19,13 @@ int TriMesh::add_triangle(int a, int b, int c) {
   const int t = triangle_slots();
   record({.kind = Change::Kind::add_triangle});
   triangles_.push_back({a, b, c});
-  for (int v : {a, b, c}) vertex_triangles_[v].push_back(t);
+  link(t);
   ++alive_triangles_;
   return t;
+}
+
+void TriMesh::link(int t) {
+  for (int v : triangles_[t]) vertex_triangles_[v].push_back(t);
 }
 
 void TriMesh::unlink(int t) {
@@ -43,7 +47,7 @@ void TriMesh::set_triangle(int t, const Triangle& corners) {
   record({.kind = Change::Kind::set_triangle, .index = t, .corners = triangles_[t]});
   unlink(t);
   triangles_[t] = corners;
-  for (int v : corners) vertex_triangles_[v].push_back(t);
+  link(t);
 }
 
 void TriMesh::set_position(int v, const Vec2& p) {
@@ -115,13 +119,13 @@ void TriMesh::rollback() {
         break;
       case Change::Kind::remove_triangle:
         triangles_[c.index] = c.corners;
-        for (int v : c.corners) vertex_triangles_[v].push_back(c.index);
+        link(c.index);
         ++alive_triangles_;
         break;
       case Change::Kind::set_triangle:
         unlink(c.index);
         triangles_[c.index] = c.corners;
-        for (int v : c.corners) vertex_triangles_[v].push_back(c.index);
+        link(c.index);
         break;
       case Change::Kind::position:
         points_[c.index] = c.point;

@@ -150,6 +150,7 @@ class TriMesh {
   void record(Change change) {
     if (journal_open_) journal_.push_back(std::move(change));
   }
+  void link(int t);    // adds t to its corners' incidence lists
   void unlink(int t);  // removes t from its corners' incidence lists
   bool journal_open_ = false;
   std::vector<Change> journal_;
