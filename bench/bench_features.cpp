@@ -4,7 +4,7 @@
 // whole stage should grow like n log n.
 #include <benchmark/benchmark.h>
 
-#include "features/features.hpp"
+#include "pipeline/pipeline.hpp"
 #include "random_soup.hpp"
 
 namespace {
@@ -12,10 +12,11 @@ namespace {
 using curvemesh::bench::random_soup;
 
 void BM_FeatureProcessing(benchmark::State& state) {
-  const auto soup = random_soup(static_cast<int>(state.range(0)), 7);
+  using namespace curvemesh;
+  const auto source = pipeline::Source::curves(random_soup(static_cast<int>(state.range(0)), 7));
   std::size_t sections = 0;
   for (auto _ : state) {
-    const auto f = curvemesh::features::process(soup);
+    const auto f = pipeline::run(source, {}, {pipeline::Stage::features}).features;
     sections = f.sections.size();
     benchmark::DoNotOptimize(sections);
   }

@@ -10,7 +10,7 @@
 #include "fem/convergence.hpp"
 #include "fem/domain.hpp"
 #include "fem/drawing.hpp"
-#include "svg/reader.hpp"
+#include "pipeline/output.hpp"
 
 namespace {
 
@@ -21,15 +21,12 @@ struct Meshes {
 };
 
 Meshes make(int which) {
-  fem::DrawingOptions o;
-  svg::FeatureSoup soup;
-  if (which == 0) {
-    soup = svg::read_svg_file(CURVEMESH_EXAMPLES "/overlapping-shapes.svg");
-  } else {
-    soup = svg::read_svg(fem::disk_svg(), {}, "<disk>");
-    o.features.edge_length_rel = 0.01;
-  }
-  const fem::MeshedDrawing d = fem::mesh_drawing(soup, o);
+  pipeline::Parameters p;
+  if (which == 1) p.edge_length_rel = 0.01;
+  const fem::MeshedDrawing d = pipeline::mesh_drawing(
+      which == 0 ? pipeline::Source::file(CURVEMESH_EXAMPLES "/overlapping-shapes.svg")
+                 : pipeline::Source::svg(fem::disk_svg(), "<disk>"),
+      p);
   std::vector<char> cut(d.mesh.line_count());
   for (int l = 0; l < d.mesh.line_count(); ++l) cut[l] = d.mesh.line_physical[l] != io::kPhysicalBoundary;
   Meshes m;

@@ -13,6 +13,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.max_curves = 200'000;
   options.max_elements = 200'000;
   options.max_entity_expansion = 1u << 20;
+  options.degenerate_tolerance_rel = 1e-8;  // the default epsilon_m
   try {
     const auto soup =
         curvemesh::svg::read_svg(std::string_view(reinterpret_cast<const char*>(data), size), options, "fuzz.svg");

@@ -32,11 +32,8 @@
 #include <vector>
 
 #include "app/commands.hpp"
-#include "app/feature_options.hpp"
-#include "features/options.hpp"
+#include "app/mesh_options.hpp"
 #include "io/output_file.hpp"
-#include "optimize/optimize.hpp"
-#include "triangulate/triangulate.hpp"
 
 namespace curvemesh::app {
 
@@ -50,11 +47,8 @@ using Json = nlohmann::ordered_json;
 // the same checks as `mesh` has, so a bad value is a usage error before any drawing runs, and
 // then forwarded as the user wrote them (the child parses them again, the one source of truth).
 struct MeshForwarding {
-  bool linear = false;
+  pipeline::Parameters parameters;
   int msh_version = 41;
-  features::Options features;
-  optimize::Options optimize;
-  triangulate::Options triangulate;
   std::vector<const CLI::Option*> options;  // forwarded when given on the command line
 };
 
@@ -661,8 +655,8 @@ class Batch {
                             "cannot create " + d.msh.parent_path().string() + ": " + ec.message()));
       return;
     }
-    std::vector<std::string> argv = {"curvemesh",    "mesh",    d.path,          "-o",
-                                     d.msh.string(), "--stats", d.stats.string()};
+    std::vector<std::string> argv = {"curvemesh",    "mesh",    d.path,           "-o",
+                                     d.msh.string(), "--stats", d.stats.string(), "-q"};
     argv.insert(argv.end(), forwarded_.begin(), forwarded_.end());
     Job job;
     job.index = i;
@@ -833,9 +827,9 @@ class Batch {
 // The mesh options as the user gave them, to pass on to each child.
 std::vector<std::string> forwarded_arguments(const MeshForwarding& m) {
   std::vector<std::string> out;
-  if (m.linear) out.push_back("--linear");
+  if (m.parameters.linear) out.push_back("--linear");
   for (const CLI::Option* o : m.options)
-    if (o->count() > 0 && !o->results().empty()) {
+    if (o->count() > 0 && !o->results().empty() && o->get_expected_min() > 0) {
       out.push_back(o->get_name());
       out.push_back(o->results().back());
     }
@@ -843,7 +837,7 @@ std::vector<std::string> forwarded_arguments(const MeshForwarding& m) {
 }
 
 int run_batch(const BatchArgs& args) {
-  if (!feature_options_valid(args.mesh.features)) return kUsage;
+  if (!parameters_valid(args.mesh.parameters)) return kUsage;
   const auto shard = parse_shard(args.shard);
   if (!shard) {
     std::cerr << "curvemesh: --shard wants K/N with 1 <= K <= N, not '" << args.shard << "'\n";
@@ -918,31 +912,6 @@ int run_batch(const BatchArgs& args) {
   }
 }
 
-// The `mesh` options worth setting for a corpus, with the checks and defaults `mesh` has.
-void add_forwarded_mesh_options(CLI::App& cmd, MeshForwarding& m) {
-  cmd.add_flag("--linear", m.linear,
-               "mesh: make linear meshes (straight 3-node triangles) instead of curved ones");
-  const std::size_t first = cmd.get_options().size();
-  cmd.add_option("--msh-version", m.msh_version, "mesh: Gmsh file format, 4.1 or 2.2")
-      ->capture_default_str()
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, int>{{"4.1", 41}, {"41", 41}, {"2.2", 22}, {"22", 22}}));
-  add_feature_options(cmd, m.features);
-  cmd.add_option("--max-iterations", m.optimize.max_iterations, "mesh: optimization passes at most")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  cmd.add_option("--stop-amips", m.optimize.stop_max_amips,
-                 "mesh: optimization stops once every triangle's AMIPS energy is at most this")
-      ->capture_default_str()
-      ->check(CLI::Range(2.0, 1e9));
-  cmd.add_option("--box-margin", m.triangulate.box_margin_rel,
-                 "mesh: the meshed box extends the drawing's bounding box by this, relative to d")
-      ->capture_default_str()
-      ->check(CLI::Range(1e-3, 10.0));
-  const auto all = cmd.get_options();
-  m.options.assign(all.begin() + static_cast<std::ptrdiff_t>(first), all.end());
-}
-
 }  // namespace
 
 Runner add_batch_command(CLI::App& app) {
@@ -993,7 +962,7 @@ Runner add_batch_command(CLI::App& app) {
                   "K/N: mesh only the drawings whose index i in the sorted list has i % N == K-1 (K from 1), "
                   "to split a corpus over N runs whose reports add up to the whole")
       ->capture_default_str();
-  add_forwarded_mesh_options(*cmd, args->mesh);
+  args->mesh.options = add_mesh_options(*cmd, args->mesh.parameters, args->mesh.msh_version);
   cmd->footer(
       "The options from --linear on are passed on to each `curvemesh mesh` as given; see "
       "`curvemesh mesh --help`.");

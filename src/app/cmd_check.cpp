@@ -14,8 +14,7 @@
 #include "geometry/p3_triangle.hpp"
 #include "io/high_order_mesh.hpp"
 #include "io/msh_reader.hpp"
-#include "svg/error.hpp"
-#include "svg/reader.hpp"
+#include "pipeline/pipeline.hpp"
 
 namespace curvemesh::app {
 
@@ -119,10 +118,10 @@ int run_check(const CheckArgs& args) {
   if (!args.svg.empty()) {
     svg::FeatureSoup soup;
     try {
-      soup = svg::read_svg_file(args.svg);
-    } catch (const svg::InputError& e) {
+      soup = pipeline::run(pipeline::Source::file(args.svg), {}, {pipeline::Stage::read}).soup;
+    } catch (const Error& e) {
       std::cerr << "curvemesh: " << e.what() << "\n";
-      return kInvalidInput;
+      return exit_code(e);
     }
     geometry::Box2 box;
     for (const auto& c : soup.curves)

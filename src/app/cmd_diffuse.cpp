@@ -6,12 +6,10 @@
 #include <memory>
 
 #include "app/commands.hpp"
-#include "app/feature_options.hpp"
+#include "app/mesh_options.hpp"
 #include "app/solve_common.hpp"
 #include "fem/diffuse.hpp"
-#include "svg/error.hpp"
 #include "svg/paint.hpp"
-#include "svg/reader.hpp"
 
 namespace curvemesh::app {
 
@@ -24,29 +22,18 @@ struct DiffuseArgs {
 
 int run_diffuse(const DiffuseArgs& args) {
   const SolveOptions& o = args.solve;
-  if (!feature_options_valid(o.drawing.features)) return kUsage;
   fem::DiffuseOptions options;
   const svg::Paint bg = *svg::parse_color(args.background);  // checked by the option
   options.background = {bg.r / 255.0, bg.g / 255.0, bg.b / 255.0};
 
-  fem::MeshedDrawing drawing;
-  std::vector<fem::SideColours> colours;
-  try {
-    const svg::FeatureSoup soup = svg::read_svg_file(o.input, {});
-    for (const std::string& w : soup.warnings) std::cerr << "curvemesh: " << o.input << ": warning: " << w << "\n";
-    colours = fem::curve_colours(soup);
-    drawing = fem::mesh_drawing(soup, o.drawing);
-  } catch (const svg::InputError& e) {
-    std::cerr << "curvemesh: " << e.what() << "\n";
-    return kInvalidInput;
-  } catch (const fem::DrawingError& e) {
-    std::cerr << "curvemesh: " << o.input << ": " << e.what() << "; nothing diffused\n";
-    return kInvalidInput;
-  }
+  int exit_code = kOk;
+  const std::optional<fem::MeshedDrawing> meshed = mesh_for_solving(o, "diffused", &exit_code);
+  if (!meshed) return exit_code;
+  const fem::MeshedDrawing& drawing = *meshed;
   geometry::Box2 view;
   for (const geometry::Vec2& x : drawing.mesh.nodes) view.add(x);
 
-  const fem::DiffusionMesh cut = fem::cut_along_curves(drawing, colours);
+  const fem::DiffusionMesh cut = fem::cut_along_curves(drawing, drawing.colours);
   const io::HighOrderMesh mesh = o.linear ? fem::straight_mesh(cut.cut.mesh) : cut.cut.mesh;
   const fem::Geometry geometry(mesh);
   const fem::Space space(mesh, 2);
@@ -104,7 +91,7 @@ Runner add_diffuse_command(CLI::App& app) {
                   "otherwise undetermined")
       ->capture_default_str()
       ->check([](const std::string& s) { return svg::parse_color(s) ? std::string() : "not a CSS colour: " + s; });
-  add_feature_options(*cmd, o.drawing.features);
+  add_feature_options(*cmd, o.parameters);
   return [args] { return run_diffuse(*args); };
 }
 

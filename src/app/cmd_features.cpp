@@ -5,14 +5,12 @@
 #include <memory>
 
 #include "app/commands.hpp"
-#include "app/feature_options.hpp"
-#include "features/features.hpp"
+#include "app/mesh_options.hpp"
 #include "io/features_json.hpp"
 #include "io/output_file.hpp"
 #include "io/soup_json.hpp"
 #include "io/soup_svg.hpp"
-#include "svg/error.hpp"
-#include "svg/reader.hpp"
+#include "pipeline/pipeline.hpp"
 
 namespace curvemesh::app {
 
@@ -22,29 +20,29 @@ struct FeaturesArgs {
   std::string output_json;
   std::string output_svg;
   bool processed = false;
-  svg::ReadOptions read;
-  features::Options features;
+  pipeline::Parameters parameters;
 };
 
 int run_features(const FeaturesArgs& args) {
-  if (args.processed && !feature_options_valid(args.features)) return kUsage;
-  svg::FeatureSoup soup;
+  if (!parameters_valid(args.parameters)) return kUsage;
+  pipeline::RunOptions run;
+  run.stop_after = args.processed ? pipeline::Stage::features : pipeline::Stage::read;
+  run.warn = [&](const std::string& w) { std::cerr << "curvemesh: " << args.input << ": warning: " << w << "\n"; };
+  pipeline::Result r;
   try {
-    soup = svg::read_svg_file(args.input, args.read);
-  } catch (const svg::InputError& e) {
+    r = pipeline::run(pipeline::Source::file(args.input), args.parameters, run);
+  } catch (const Error& e) {
     std::cerr << "curvemesh: " << e.what() << "\n";
-    return kInvalidInput;
+    return exit_code(e);
   }
-  for (const std::string& w : soup.warnings) std::cerr << "curvemesh: " << args.input << ": warning: " << w << "\n";
 
-  nlohmann::ordered_json json = io::soup_to_json(soup);
+  nlohmann::ordered_json json = io::soup_to_json(r.soup);
   std::string drawing;
   if (args.processed) {
-    const features::Features f = features::process(soup, args.features);
-    io::add_features_json(f, json);
-    if (!args.output_svg.empty()) drawing = io::features_to_svg(f);
+    io::add_features_json(r.features, json);
+    if (!args.output_svg.empty()) drawing = io::features_to_svg(r.features);
   } else if (!args.output_svg.empty()) {
-    drawing = io::soup_to_svg(soup);
+    drawing = io::soup_to_svg(r.soup);
   }
   try {
     io::write_file_atomically(args.output_json, json.dump(1) + "\n");
@@ -72,12 +70,7 @@ Runner add_features_command(CLI::App& app) {
                   "secondary green, points black)");
   cmd->add_flag("--processed", args->processed,
                 "run feature processing and add sections, segments and feature_points to the JSON");
-  cmd->add_option("--degenerate-tolerance", args->read.degenerate_tolerance_rel,
-                  "reader: paths whose control points all lie within this distance (relative to the "
-                  "bounding-box diagonal d) become isolated points")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  add_feature_options(*cmd, args->features);
+  add_feature_options(*cmd, args->parameters);
   return [args] { return run_features(*args); };
 }
 

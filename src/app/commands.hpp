@@ -1,6 +1,7 @@
 #pragma once
 // The `curvemesh` subcommands. Each registers its options on the CLI11 app and returns the
 // function that runs it; exit codes follow the design: 0 ok, 1 invalid input, 2 usage, 3 bug.
+#include <curvemesh/parameters.hpp>
 #include <functional>
 #include <utility>
 
@@ -11,6 +12,15 @@ class App;
 namespace curvemesh::app {
 
 enum ExitCode : int { kOk = 0, kInvalidInput = 1, kUsage = 2, kInternal = 3 };
+
+// The exit code of a failure: 2 for parameters, 3 for an internal one, 1 for the rest.
+inline int exit_code(const Error& e) {
+  switch (e.kind()) {
+    case Error::Kind::invalid_parameters: return kUsage;
+    case Error::Kind::internal: return kInternal;
+    default: return kInvalidInput;
+  }
+}
 
 using Runner = std::function<int()>;
 

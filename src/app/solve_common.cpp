@@ -4,10 +4,9 @@
 #include <iostream>
 
 #include "app/commands.hpp"
-#include "app/feature_options.hpp"
+#include "app/mesh_options.hpp"
 #include "io/output_file.hpp"
-#include "svg/error.hpp"
-#include "svg/reader.hpp"
+#include "pipeline/output.hpp"
 
 namespace curvemesh::app {
 
@@ -25,29 +24,33 @@ void add_solve_options(CLI::App& cmd, SolveOptions& o, const std::string& defaul
                  "outside (the others), or all (the whole meshed box)")
       ->capture_default_str()
       ->check(CLI::IsMember({"inside", "outside", "all"}));
-  add_feature_options(cmd, o.drawing.features);
+  add_feature_options(cmd, o.parameters);
 }
 
-std::optional<Problem> prepare_problem(const SolveOptions& o, int* exit_code) {
+std::optional<fem::MeshedDrawing> mesh_for_solving(const SolveOptions& o, const char* done, int* exit_code) {
   *exit_code = kOk;
-  if (!feature_options_valid(o.drawing.features)) {
+  if (!parameters_valid(o.parameters)) {
     *exit_code = kUsage;
     return std::nullopt;
   }
-  Problem p;
+  pipeline::Parameters curved = o.parameters;
+  curved.linear = false;  // --linear solves on the straight map of the curved mesh
+  pipeline::RunOptions run;
+  run.warn = [&](const std::string& w) { std::cerr << "curvemesh: " << o.input << ": warning: " << w << "\n"; };
   try {
-    const svg::FeatureSoup soup = svg::read_svg_file(o.input, {});
-    for (const std::string& w : soup.warnings) std::cerr << "curvemesh: " << o.input << ": warning: " << w << "\n";
-    p.drawing = fem::mesh_drawing(soup, o.drawing);
-  } catch (const svg::InputError& e) {
-    std::cerr << "curvemesh: " << e.what() << "\n";
-    *exit_code = kInvalidInput;
-    return std::nullopt;
-  } catch (const fem::DrawingError& e) {
-    std::cerr << "curvemesh: " << o.input << ": " << e.what() << "; nothing solved\n";
-    *exit_code = kInvalidInput;
+    return pipeline::meshed_drawing(pipeline::run(pipeline::Source::file(o.input), curved, run));
+  } catch (const Error& e) {
+    std::cerr << "curvemesh: " << e.what() << "; nothing " << done << "\n";
+    *exit_code = app::exit_code(e);
     return std::nullopt;
   }
+}
+
+std::optional<Problem> prepare_problem(const SolveOptions& o, int* exit_code) {
+  Problem p;
+  std::optional<fem::MeshedDrawing> drawing = mesh_for_solving(o, "solved", exit_code);
+  if (!drawing) return std::nullopt;
+  p.drawing = std::move(*drawing);
   const io::HighOrderMesh& whole = p.drawing.mesh;
   p.view = geometry::Box2();
   for (const geometry::Vec2& x : whole.nodes) p.view.add(x);

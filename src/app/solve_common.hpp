@@ -10,6 +10,7 @@
 #include "fem/output.hpp"
 #include "fem/space.hpp"
 #include "io/vtu_writer.hpp"
+#include "pipeline/parameters.hpp"
 
 namespace CLI {
 class App;
@@ -23,12 +24,16 @@ struct SolveOptions {
   int width = 800;       // PNG width in pixels
   bool linear = false;   // P2 on the straight map of the same mesh instead of the cubic one
   std::string domain;    // "inside" (odd depth), "outside" (even depth) or "all"
-  fem::DrawingOptions drawing;
+  pipeline::Parameters parameters;  // of the mesh (always curved: --linear only drops the cubic map)
 };
 
 // Registers input, -o/--output (VTU), --png, --width, --linear, --domain (default as given)
 // and the feature options.
 void add_solve_options(CLI::App& cmd, SolveOptions& options, const std::string& default_domain);
+
+// Reads and meshes the drawing through the pipeline. On failure says why on stderr (ending in
+// "; nothing `done`") and returns nothing, with the exit code in *exit_code.
+std::optional<fem::MeshedDrawing> mesh_for_solving(const SolveOptions& options, const char* done, int* exit_code);
 
 // The domain of a problem: the chosen regions of the meshed drawing, with the straight map when
 // asked.

@@ -42,9 +42,10 @@ using geometry::Vec2;
 struct Options {
   int certificate_depth = 10;  // subdivision levels of the Jacobian certificate
   // Step 4 (§4.2): smoothing and the local operations on the curved mesh stop once every
-  // triangle's AMIPS energy is at most this, or after this many passes (of each).
-  double stop_amips = 20;
-  int max_smoothing_passes = 10;
+  // triangle's AMIPS energy is at most this, or after this many passes (of each); both from
+  // pipeline::Parameters.
+  double stop_amips = 0;
+  int max_smoothing_passes = 0;
 };
 
 struct Stats {

@@ -52,7 +52,12 @@ struct Features {
   int straight_curves = 0;           // curves turned into straight segments
 };
 
-// The whole stage. Deterministic; never fails on finite input.
-Features process(const svg::FeatureSoup& soup, const Options& options = {});
+// The box the drawing is meshed in (its diagonal is d): the soup's bounds, or its canvas (viewBox
+// or width/height) when nothing is drawn.
+Box2 drawing_box(const svg::FeatureSoup& soup);
+
+// The whole stage, with `lengths` resolved for drawing_box(soup). Deterministic; never fails on
+// finite input.
+Features process(const svg::FeatureSoup& soup, const Lengths& lengths);
 
 }  // namespace curvemesh::features

@@ -72,7 +72,7 @@ class Records {
 
 }  // namespace
 
-Features read_poly(const std::string& path, const Options& options) {
+Features read_poly(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw svg::InputError("cannot open the file", path);
   Records r(path, in);
@@ -133,7 +133,6 @@ Features read_poly(const std::string& path, const Options& options) {
     f.box.add(vertices[i]);
     if (!used[i]) f.points.push_back({vertices[i], int(i)});
   }
-  f.lengths = resolve(options, f.box.diagonal());
   return f;
 }
 

@@ -8,7 +8,8 @@
 
 namespace curvemesh::features {
 
-// Throws svg::InputError naming the file and line on anything malformed.
-Features read_poly(const std::string& path, const Options& options);
+// The segments, points and box; `lengths` are left to be resolved for the box's diagonal. Throws
+// svg::InputError naming the file and line on anything malformed.
+Features read_poly(const std::string& path);
 
 }  // namespace curvemesh::features

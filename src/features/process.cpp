@@ -38,12 +38,17 @@ std::vector<Section> runs_of(const detail::Discretized& d, const svg::FeatureSou
 
 }  // namespace
 
-Features process(const svg::FeatureSoup& soup, const Options& options) {
-  Features f;
-  f.box = soup.bounds();
+Box2 drawing_box(const svg::FeatureSoup& soup) {
+  const Box2 bounds = soup.bounds();
   // Nothing drawn (a file of gradient or pattern definitions): the canvas alone is meshed.
-  if (f.box.empty() && !soup.canvas.empty() && soup.canvas.diagonal() > 0) f.box = soup.canvas;
-  f.lengths = resolve(options, f.box.diagonal());
+  if (bounds.empty() && !soup.canvas.empty() && soup.canvas.diagonal() > 0) return soup.canvas;
+  return bounds;
+}
+
+Features process(const svg::FeatureSoup& soup, const Lengths& lengths) {
+  Features f;
+  f.box = drawing_box(soup);
+  f.lengths = lengths;
   detail::Discretized d = detail::discretize(soup, f.lengths);
   detail::tag_primary_secondary(d, f.lengths);
   f.segments = detail::simplify_secondary(d, f.lengths);

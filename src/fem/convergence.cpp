@@ -7,7 +7,8 @@
 
 #include "fem/assembly.hpp"
 #include "fem/domain.hpp"
-#include "svg/reader.hpp"
+#include "fem/drawing.hpp"
+#include "pipeline/output.hpp"
 
 namespace curvemesh::fem {
 
@@ -79,12 +80,11 @@ void rates(ConvergenceSeries& s) {
 }  // namespace
 
 ConvergenceResult poisson_convergence(const ConvergenceOptions& options) {
-  const svg::FeatureSoup soup = svg::read_svg(disk_svg(), {}, "<disk>");
   ConvergenceResult result;
   for (double l : options.edge_lengths_rel) {
-    DrawingOptions drawing = options.drawing;
-    drawing.features.edge_length_rel = l;
-    const MeshedDrawing meshed = mesh_drawing(soup, drawing);
+    pipeline::Parameters parameters = options.parameters;
+    parameters.edge_length_rel = l;
+    const MeshedDrawing meshed = pipeline::mesh_drawing(pipeline::Source::svg(disk_svg(), "<disk>"), parameters);
     result.mesh_seconds += meshed.seconds;
     const Regions regions = find_regions(meshed.mesh);
     std::vector<char> keep(meshed.mesh.triangle_count());

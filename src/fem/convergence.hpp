@@ -11,13 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "fem/drawing.hpp"
+#include "pipeline/parameters.hpp"
 
 namespace curvemesh::fem {
 
 struct ConvergenceOptions {
   std::vector<double> edge_lengths_rel = {0.04, 0.028, 0.02, 0.014, 0.01};  // -l of each level
-  DrawingOptions drawing;
+  pipeline::Parameters parameters;  // of the meshes; the edge length is each level's
 };
 
 struct ConvergenceLevel {

@@ -11,10 +11,6 @@ namespace curvemesh::fem {
 
 namespace {
 
-Rgb rgb_of(const svg::Paint& p) { return {p.r / 255.0, p.g / 255.0, p.b / 255.0}; }
-
-bool is_colour(const svg::Paint& p) { return p.kind == svg::Paint::Kind::color; }
-
 // Components of the unknowns linked by triangles.
 std::vector<int> components(const Space& space, int triangles) {
   std::vector<int> parent(space.size());
@@ -35,16 +31,6 @@ std::vector<int> components(const Space& space, int triangles) {
 }
 
 }  // namespace
-
-std::vector<SideColours> curve_colours(const svg::FeatureSoup& soup) {
-  std::vector<SideColours> out;
-  out.reserve(soup.curves.size());
-  for (const svg::SoupCurve& c : soup.curves) {
-    const Rgb both = is_colour(c.stroke) ? rgb_of(c.stroke) : is_colour(c.fill) ? rgb_of(c.fill) : Rgb{0, 0, 0};
-    out.push_back({is_colour(c.left) ? rgb_of(c.left) : both, is_colour(c.right) ? rgb_of(c.right) : both});
-  }
-  return out;
-}
 
 DiffusionMesh cut_along_curves(const MeshedDrawing& drawing, const std::vector<SideColours>& colours) {
   const io::HighOrderMesh& mesh = drawing.mesh;

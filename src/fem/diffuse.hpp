@@ -11,7 +11,8 @@
 // Sides. SVG's y axis points down, so "left" is meant as on screen: walking along a curve the
 // way its parameter grows (the way its path is drawn), the left side is on the walker's left
 // hand; a curve drawn rightwards has its left side above it on screen. The reader has already
-// exchanged the two colours of elements drawn through a mirroring transform (svg::SoupCurve).
+// exchanged the two colours of elements drawn through a mirroring transform, and the pipeline
+// has given each curve its two colours (MeshedDrawing::colours).
 //
 // Which lines are cut: every primary and every secondary line that lies on an input curve.
 // Secondary lines are curve pieces too (too short or too bent to be reproduced by curved edges,
@@ -25,17 +26,8 @@
 #include "fem/drawing.hpp"
 #include "fem/output.hpp"
 #include "fem/space.hpp"
-#include "svg/feature_soup.hpp"
 
 namespace curvemesh::fem {
-
-struct SideColours {
-  Rgb left{}, right{};
-};
-
-// The colour of each side of each soup curve: its data-color-left / data-color-right where
-// given, else its stroke colour, else its fill colour, else black.
-std::vector<SideColours> curve_colours(const svg::FeatureSoup& soup);
 
 // One side of a cut: triangle t's local edge e (Gmsh order: 0→1, 1→2, 2→0) held at `colour`.
 struct ColouredEdge {

@@ -30,7 +30,7 @@ struct Constraints {
   std::vector<SectionCurve> sections;  // indexed like the features' sections
   geometry::SegmentEnvelope envelope;  // the secondary input segments and ε (invariant 2)
   geometry::Box2 box;                  // the outer box the boundary edges lie on
-  double max_turning = 0.17453292519943295;  // α in radians (invariant 3)
+  double max_turning = 0;              // α in radians (invariant 3)
 };
 
 }  // namespace curvemesh::mesh

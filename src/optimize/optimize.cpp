@@ -136,12 +136,12 @@ Quality measure(const TriMesh& m, bool mean_edge_length) {
   return q;
 }
 
-Stats optimize(TriMesh& m, const mesh::Constraints& c, double diagonal, const Options& o) {
+Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
   const auto start = std::chrono::steady_clock::now();
   Stats s;
   m.compact();
   s.initial = measure(m);
-  const double target = o.edge_length_rel * diagonal, smallest = o.min_edge_length_rel * diagonal;
+  const double target = o.edge_length, smallest = o.min_edge_length;
   std::vector<double> size = initial_sizes(m, target, o.pinned_size_factor, o.gradation);  // the sizing field, per vertex
   const auto edge_target = [&](int a, int b) { return 0.5 * (size[a] + size[b]); };
   double best_max = s.initial.max_amips;

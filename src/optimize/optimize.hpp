@@ -10,12 +10,13 @@
 
 namespace curvemesh::optimize {
 
+// The first five come from pipeline::Parameters, lengths made absolute.
 struct Options {
-  double edge_length_rel = 1.0 / 20;     // l: target edge length, relative to the diagonal d
-  double min_edge_length_rel = 1e-4;     // l_m: adaptive sizing never asks for less
-  int max_iterations = 80;               // §4.1: the batch default
-  double stop_min_angle_deg = 10.0;      // α: stop once every angle is at least this ...
-  double stop_max_amips = 10.0;          // ... or every AMIPS energy is at most this (TetWild)
+  double edge_length = 0;                // l: target edge length
+  double min_edge_length = 0;            // l_m: adaptive sizing never asks for less
+  int max_iterations = 0;                // §4.1: passes at most
+  double stop_min_angle_deg = 0;         // α: stop once every angle is at least this ...
+  double stop_max_amips = 0;             // ... or every AMIPS energy is at most this (TetWild)
   // Sizing: near two vertices that can never merge (a tight bend of a curve), the target is this
   // factor times their distance, and it grows away from there by `gradation` per unit length.
   double pinned_size_factor = 3.0;
@@ -46,7 +47,7 @@ Quality measure(const mesh::TriMesh& mesh);
 // The same without the mean edge length (which needs every edge): what each iteration looks at.
 Quality measure(const mesh::TriMesh& mesh, bool mean_edge_length);
 
-// Improves `mesh` in place. `diagonal` is the input's bounding-box diagonal d.
-Stats optimize(mesh::TriMesh& mesh, const mesh::Constraints& constraints, double diagonal, const Options& options = {});
+// Improves `mesh` in place.
+Stats optimize(mesh::TriMesh& mesh, const mesh::Constraints& constraints, const Options& options);
 
 }  // namespace curvemesh::optimize

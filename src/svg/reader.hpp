@@ -12,8 +12,8 @@ namespace curvemesh::svg {
 
 struct ReadOptions {
   // Paths whose control points all lie within this distance, relative to the drawing's
-  // bounding-box diagonal, become isolated points (paper §4: ε_m).
-  double degenerate_tolerance_rel = 1e-8;
+  // bounding-box diagonal, become isolated points (paper §4: ε_m, from pipeline::Parameters).
+  double degenerate_tolerance_rel = 0;
   // Refuse documents nested deeper than this (elements inside elements, <use> included).
   int max_depth = 512;
   // Refuse documents that expand (through <use>) to more curves or elements than this: a small

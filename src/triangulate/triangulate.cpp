@@ -128,7 +128,7 @@ class Builder {
   void make_box() {
     geometry::Box2 box = f_.box;
     if (box.empty()) box.add(Vec2::Zero());
-    const double margin = std::max(o_.box_margin_rel, 0.0) * f_.lengths.d;
+    const double margin = o_.box_margin;
     // A drawing with no extent (one point) still gets a box of the working length scale.
     const double pad = margin > 0 ? margin : f_.lengths.d;
     box.min -= Vec2(pad, pad);

@@ -14,9 +14,9 @@
 namespace curvemesh::triangulate {
 
 struct Options {
-  // The outer box is the input's bounding box grown on every side by this fraction of its
-  // diagonal d, so that features never touch the box and the domain around them is meshed too.
-  double box_margin_rel = 0.05;
+  // The outer box is the input's bounding box grown on every side by this length (a fraction of
+  // its diagonal d), so that features never touch the box and the domain around them is meshed too.
+  double box_margin = 0;
 };
 
 struct Stats {
@@ -34,6 +34,6 @@ struct Result {
   Stats stats;
 };
 
-Result triangulate(const features::Features& features, const Options& options = {});
+Result triangulate(const features::Features& features, const Options& options);
 
 }  // namespace curvemesh::triangulate

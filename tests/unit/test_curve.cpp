@@ -10,10 +10,7 @@
 #include "features/features.hpp"
 #include "geometry/envelope.hpp"
 #include "geometry/p3_triangle.hpp"
-#include "optimize/optimize.hpp"
-#include "svg/reader.hpp"
-#include "triangulate/constraints.hpp"
-#include "triangulate/triangulate.hpp"
+#include "pipeline/pipeline.hpp"
 
 namespace curvemesh {
 namespace {
@@ -27,13 +24,21 @@ struct Pipeline {
   curve::Stats stats;
 };
 
+// The paper's parameters as the stages receive them (α, step 4's stop), for hand-made meshes.
+const pipeline::Resolved kPaper = pipeline::resolve({}, 1);
+
+mesh::Constraints paper_constraints() {
+  mesh::Constraints c;
+  c.max_turning = kPaper.features.alpha_rad;
+  return c;
+}
+
 Pipeline run(const std::string& file) {
-  const auto f = features::process(svg::read_svg_file(file));
-  auto tri = triangulate::triangulate(f);
+  pipeline::Result r = pipeline::run(pipeline::Source::file(file), {});
   Pipeline p;
-  p.constraints = triangulate::constraints_of(f, tri.box);
-  optimize::optimize(tri.mesh, p.constraints, f.lengths.d);
-  p.curved = curve::curve(std::move(tri.mesh), p.constraints, {}, &p.stats);
+  p.constraints = std::move(r.constraints);
+  p.curved = std::move(*r.curved);
+  p.stats = r.curve_stats;
   return p;
 }
 
@@ -45,7 +50,7 @@ geometry::P3Nodes nodes_of(const curve::CurvedMesh& c, std::size_t t) {
 
 // The statistics of curving without step 4 (no smoothing, no local operations).
 curve::Stats without_step4(const mesh::TriMesh& m, const mesh::Constraints& constraints) {
-  curve::Options options;
+  curve::Options options = kPaper.curve;
   options.max_smoothing_passes = 0;
   curve::Stats s;
   curve::curve(m, constraints, options, &s);
@@ -110,13 +115,13 @@ TEST(Curve, AnEdgeThatWouldFoldItsTriangleIsFittedAsFarAsCertified) {
   const int c = m.add_vertex({0.5, 0.1}, fixed), d = m.add_vertex({0.5, -1}, fixed);
   m.add_triangle(a, b, c);
   m.add_triangle(a, d, b);
-  mesh::Constraints constraints;
+  mesh::Constraints constraints = paper_constraints();
   mesh::SectionCurve curve;
   curve.piece = geometry::CubicBezier({0, 0}, {0.3, 0.4}, {0.7, 0.4}, {1, 0});
   constraints.sections.push_back(curve);
   m.set_feature(a, b, {EdgeKind::primary, 0, 0, 0.0, 1.0});
   curve::Stats s;
-  const curve::CurvedMesh out = curve::curve(m, constraints, {}, &s);
+  const curve::CurvedMesh out = curve::curve(m, constraints, kPaper.curve, &s);
   EXPECT_EQ(s.primary_edges, 1);
   EXPECT_EQ(s.curved_edges, 0);
   EXPECT_EQ(s.fitted_edges, 1);
@@ -133,7 +138,7 @@ TEST(Curve, AnEdgeThatWouldFoldItsTriangleIsFittedAsFarAsCertified) {
   // With a gentle bulge (0.03) the same edge is curved (step 4 may split it to lower the energy
   // of the flat triangle above it: then every piece follows the curve).
   constraints.sections[0].piece = geometry::CubicBezier({0, 0}, {0.3, 0.04}, {0.7, 0.04}, {1, 0});
-  curve::curve(m, constraints, {}, &s);
+  curve::curve(m, constraints, kPaper.curve, &s);
   EXPECT_GE(s.curved_edges, 1);
   EXPECT_EQ(s.curved_edges, s.primary_edges);
   EXPECT_LE(s.max_distance, 1e-15);  // the cubic edge is the cubic curve
@@ -143,7 +148,7 @@ TEST(Curve, AnEdgeThatWouldFoldItsTriangleIsFittedAsFarAsCertified) {
 // whose corner c is free, at height `height`, with room above it (a ring of fixed vertices).
 struct FreeCornerAboveACurve {
   mesh::TriMesh m;
-  mesh::Constraints constraints;
+  mesh::Constraints constraints = paper_constraints();
   int a = -1, b = -1, c = -1;
 };
 FreeCornerAboveACurve free_corner_above_a_curve(double height, double control) {
@@ -172,7 +177,7 @@ TEST(Curve, AFreeCornerInTheWayOfACurveMovesBeforeAnyFit) {
   // curve's way first, and the edge follows its curve exactly.
   auto [m, constraints, a, b, c] = free_corner_above_a_curve(0.1, 0.4);
   curve::Stats s;
-  const curve::CurvedMesh out = curve::curve(m, constraints, {}, &s);
+  const curve::CurvedMesh out = curve::curve(m, constraints, kPaper.curve, &s);
   EXPECT_EQ(s.curved_edges, 1);
   EXPECT_EQ(s.fitted_edges, 0);
   EXPECT_LE(s.max_distance, 1e-15);
@@ -193,7 +198,7 @@ TEST(Curve, SmoothingLiftsAFreeCornerAboveACurvedEdge) {
   EXPECT_EQ(before.max_amips, before.max_amips_before_smoothing);
 
   curve::Stats s;
-  const curve::CurvedMesh out = curve::curve(m, constraints, {}, &s);
+  const curve::CurvedMesh out = curve::curve(m, constraints, kPaper.curve, &s);
   EXPECT_EQ(s.curved_edges, 1);
   EXPECT_DOUBLE_EQ(s.max_amips_before_smoothing, before.max_amips);
   EXPECT_GT(s.smoothing_moves, 0);
@@ -232,7 +237,7 @@ TEST(Curve, SmoothingSlidesACornerAlongItsCurve) {
   m.add_triangle(v, e, c);
   m.add_triangle(a, d, v);
   m.add_triangle(v, d, b);
-  mesh::Constraints constraints;
+  mesh::Constraints constraints = paper_constraints();
   mesh::SectionCurve curve;
   curve.piece = arc;
   constraints.sections.push_back(curve);
@@ -244,7 +249,7 @@ TEST(Curve, SmoothingSlidesACornerAlongItsCurve) {
   ASSERT_GT(before.max_amips, 20);
 
   curve::Stats s;
-  const curve::CurvedMesh out = curve::curve(m, constraints, {}, &s);
+  const curve::CurvedMesh out = curve::curve(m, constraints, kPaper.curve, &s);
   EXPECT_GT(s.smoothing_moves, 0);
   EXPECT_LT(s.max_amips, before.max_amips);
   EXPECT_EQ(s.curved_edges, 2);
@@ -276,7 +281,7 @@ TEST(Curve, AThinCornerBetweenACurveAndASecondaryLineIsSplitAndOpened) {
   m.add_triangle(b, d, g);
   m.add_triangle(b, g, c);
   m.add_triangle(c, g, e);
-  mesh::Constraints constraints;
+  mesh::Constraints constraints = paper_constraints();
   mesh::SectionCurve curve;
   curve.piece = geometry::CubicBezier({0, 0}, {0.33, 0.0115}, {0.67, 0.04}, {1, 0.12});
   constraints.sections.push_back(curve);
@@ -290,7 +295,7 @@ TEST(Curve, AThinCornerBetweenACurveAndASecondaryLineIsSplitAndOpened) {
   ASSERT_GT(before.max_amips, 20);
 
   curve::Stats s;
-  const curve::CurvedMesh out = curve::curve(m, constraints, {}, &s);
+  const curve::CurvedMesh out = curve::curve(m, constraints, kPaper.curve, &s);
   EXPECT_GT(s.curved_splits, 0);
   EXPECT_LE(s.max_amips, 20);
   EXPECT_EQ(s.invalid_triangles, 0);
@@ -349,14 +354,14 @@ TEST(Curve, TrianglesFlatToRoundOffAreRemovedByTheOperations) {
   }
   m.add_triangle(line[8], s, q);
   ASSERT_FALSE(m.structure_error()) << *m.structure_error();
-  mesh::Constraints constraints;
+  mesh::Constraints constraints = paper_constraints();
   constraints.envelope = geometry::SegmentEnvelope({{m.point(line[0]), m.point(line[8])}}, 0.01);
 
   const curve::Stats before = without_step4(m, constraints);
   ASSERT_GT(before.invalid_triangles, 0);
 
   curve::Stats after;
-  const curve::CurvedMesh out = curve::curve(m, constraints, {}, &after);
+  const curve::CurvedMesh out = curve::curve(m, constraints, kPaper.curve, &after);
   EXPECT_EQ(after.invalid_triangles, 0);
   EXPECT_GT(after.curved_collapses + after.curved_swaps, 0);
   ASSERT_FALSE(out.linear.structure_error());
@@ -386,7 +391,7 @@ TEST(Curve, TrianglesWithSeveralPrimaryEdgesAreSplit) {
   m.add_triangle(a, g, h);
   m.add_triangle(a, h, b);
   m.add_triangle(b, h, e);
-  mesh::Constraints constraints;
+  mesh::Constraints constraints = paper_constraints();
   for (const auto& [p, q] : {std::pair{Vec2(0, 0), Vec2(1, 0)}, {Vec2(1, 0), Vec2(0, 1)}, {Vec2(0, 1), Vec2(0, 0)}}) {
     mesh::SectionCurve s;
     s.piece = geometry::CubicBezier::line(p, q);
@@ -397,7 +402,7 @@ TEST(Curve, TrianglesWithSeveralPrimaryEdgesAreSplit) {
   m.set_feature(b, c, {EdgeKind::primary, 1, 1, 0.0, 1.0});
   m.set_feature(a, c, {EdgeKind::primary, 2, 2, 1.0, 0.0});
   curve::Stats s;
-  const curve::CurvedMesh out = curve::curve(m, constraints, {}, &s);
+  const curve::CurvedMesh out = curve::curve(m, constraints, kPaper.curve, &s);
   EXPECT_GT(s.split_triangles, 0);
   for (const auto& n : out.triangles) {
     int primary = 0;

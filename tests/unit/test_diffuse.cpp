@@ -7,7 +7,7 @@
 #include <string>
 
 #include "fem/diffuse.hpp"
-#include "svg/reader.hpp"
+#include "pipeline/output.hpp"
 
 using namespace curvemesh;
 using fem::Rgb;
@@ -15,8 +15,14 @@ using fem::Vec2;
 
 namespace {
 
+std::string document(const std::string& body) { return "<svg xmlns=\"http://www.w3.org/2000/svg\">" + body + "</svg>"; }
+
 svg::FeatureSoup soup_of(const std::string& body) {
-  return svg::read_svg("<svg xmlns=\"http://www.w3.org/2000/svg\">" + body + "</svg>", {}, "test.svg");
+  return pipeline::run(pipeline::Source::svg(document(body), "test.svg"), {}, {pipeline::Stage::read}).soup;
+}
+
+fem::MeshedDrawing mesh_of(const std::string& body, const pipeline::Parameters& parameters = {}) {
+  return pipeline::mesh_drawing(pipeline::Source::svg(document(body), "test.svg"), parameters);
 }
 
 // A drawing meshed and diffused, cubic or straight.
@@ -28,10 +34,9 @@ struct Diffused {
   std::unique_ptr<fem::Space> space;
   fem::DiffusionResult result;
 
-  Diffused(const std::string& body, bool linear, fem::DrawingOptions options = {}) {
-    const svg::FeatureSoup soup = soup_of(body);
-    drawing = fem::mesh_drawing(soup, options);
-    cut = fem::cut_along_curves(drawing, fem::curve_colours(soup));
+  Diffused(const std::string& body, bool linear, const pipeline::Parameters& parameters = {}) {
+    drawing = mesh_of(body, parameters);
+    cut = fem::cut_along_curves(drawing, drawing.colours);
     mesh = linear ? fem::straight_mesh(cut.cut.mesh) : cut.cut.mesh;
     geometry = std::make_unique<fem::Geometry>(mesh);
     space = std::make_unique<fem::Space>(mesh, 2);
@@ -65,7 +70,7 @@ TEST(CurveColours, GivenSidesElseStrokeElseFillElseBlack) {
       "<path d='M0 0 L1 0' stroke='#ff0000' fill='#00ff00' data-color-left='#0000ff'/>"
       "<path d='M0 1 L1 1' stroke='none' fill='#00ff00' data-color-right='white'/>"
       "<path d='M0 2 L1 2' stroke='none' fill='none'/>");
-  const auto c = fem::curve_colours(soup);
+  const auto c = pipeline::curve_colours(soup);
   ASSERT_EQ(c.size(), 3u);
   expect_colour(c[0].left, {0, 0, 1}, 0, "given left");
   expect_colour(c[0].right, {1, 0, 0}, 0, "stroke");
@@ -107,11 +112,11 @@ TEST(Diffuse, ClosedCurveSeparatesConstantColours) {
   // is inside. Inside and outside are separate parts of the cut mesh, each held by one colour
   // only, so each is exactly that colour; the secondary lines of a circle made of secondary
   // pieces (a large l_m) are cut the same way.
-  fem::DrawingOptions secondary;
-  secondary.features.min_edge_length_rel = 0.2;
+  pipeline::Parameters secondary;
+  secondary.min_edge_length_rel = 0.2;
   for (const bool all_secondary : {false, true}) {
     const Diffused f(kPoints + "<circle cx='50' cy='50' r='30' data-color-left='#ffcc00' data-color-right='#3366ff'/>",
-                     false, all_secondary ? secondary : fem::DrawingOptions{});
+                     false, all_secondary ? secondary : pipeline::Parameters{});
     int primary = 0, secondary_lines = 0;
     for (int p : f.drawing.mesh.line_physical)
       primary += p == io::kPhysicalPrimary, secondary_lines += p == io::kPhysicalSecondary;
@@ -185,11 +190,11 @@ TEST(Diffuse, OneColourEverywhereIsExact) {
 TEST(Diffuse, PartsNoCurveBordersTakeTheBackground) {
   // Two circles cut open, but only the first one's sides coloured: the second one's inside has
   // no held unknown, which would make the system singular. It takes the background.
-  const svg::FeatureSoup soup = soup_of(kPoints +
-                                        "<circle id='a' cx='30' cy='50' r='15' stroke='red'/>"
-                                        "<circle id='b' cx='70' cy='50' r='15' stroke='blue'/>");
-  const fem::MeshedDrawing drawing = fem::mesh_drawing(soup);
-  fem::DiffusionMesh cut = fem::cut_along_curves(drawing, fem::curve_colours(soup));
+  const std::string body =
+      kPoints + "<circle id='a' cx='30' cy='50' r='15' stroke='red'/><circle id='b' cx='70' cy='50' r='15' stroke='blue'/>";
+  const svg::FeatureSoup soup = soup_of(body);
+  const fem::MeshedDrawing drawing = mesh_of(body);
+  fem::DiffusionMesh cut = fem::cut_along_curves(drawing, drawing.colours);
   const auto lines = fem::edge_lines(drawing.mesh);
   std::vector<fem::ColouredEdge> first_only;
   for (const fem::ColouredEdge& s : cut.sides) {

@@ -7,7 +7,7 @@
 
 #include "features/features.hpp"
 #include "geometry/closest_point.hpp"
-#include "svg/reader.hpp"
+#include "pipeline/pipeline.hpp"
 
 using namespace curvemesh;
 using features::Kind;
@@ -23,6 +23,20 @@ svg::FeatureSoup soup_of(const std::vector<CubicBezier>& curves) {
   for (const CubicBezier& c : curves) s.curves.push_back({c, 0, {}, {}, {}, {}});
   s.sources.push_back({"path", "", 0, 1});
   return s;
+}
+
+// The features stage through the pipeline: read (with the paper's ε_m) and processed with the
+// paper's parameters, or `p`.
+features::Features process(const svg::FeatureSoup& soup, const pipeline::Parameters& p = {}) {
+  return pipeline::run(pipeline::Source::curves(soup), p, {pipeline::Stage::features}).features;
+}
+
+svg::FeatureSoup read_text(const std::string& text) {
+  return pipeline::run(pipeline::Source::svg(text), {}, {pipeline::Stage::read}).soup;
+}
+
+svg::FeatureSoup read_file(const std::string& path) {
+  return pipeline::run(pipeline::Source::file(path), {}, {pipeline::Stage::read}).soup;
 }
 
 double point_segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
@@ -44,8 +58,8 @@ std::string drawing(const std::string& body) {
 }  // namespace
 
 TEST(Features, ResamplingConditionsHoldByDenseSampling) {
-  const auto soup = svg::read_svg_file(std::string(CURVEMESH_EXAMPLES) + "/open-curves.svg");
-  const auto f = features::process(soup);
+  const auto soup = read_file(std::string(CURVEMESH_EXAMPLES) + "/open-curves.svg");
+  const auto f = process(soup);
   const auto& L = f.lengths;
   int edges = 0;
   for (const auto& s : f.sections) {
@@ -75,11 +89,11 @@ TEST(Features, ResamplingConditionsHoldByDenseSampling) {
 
 TEST(Features, ParallelLinesCloserThanMuKeepOnePrimary) {
   // d ≈ 100√2; μ = 1e-3 d ≈ 0.141. Lines 0.05 apart: one must go; 1.0 apart: both stay.
-  const auto close = features::process(soup_of({CubicBezier::line({0, 0}, {100, 0}),
+  const auto close = process(soup_of({CubicBezier::line({0, 0}, {100, 0}),
                                                 CubicBezier::line({0, 0.05}, {100, 0.05}),
                                                 CubicBezier::line({0, 100}, {1, 100})}));
   EXPECT_EQ(count(close, Kind::primary), 2);  // one long line and the far short one
-  const auto far = features::process(soup_of({CubicBezier::line({0, 0}, {100, 0}),
+  const auto far = process(soup_of({CubicBezier::line({0, 0}, {100, 0}),
                                               CubicBezier::line({0, 1}, {100, 1}),
                                               CubicBezier::line({0, 100}, {1, 100})}));
   EXPECT_EQ(count(far, Kind::primary), 3);
@@ -88,11 +102,11 @@ TEST(Features, ParallelLinesCloserThanMuKeepOnePrimary) {
 
 TEST(Features, JunctionRule) {
   // A right-angle corner shared exactly: both primary. A 5° wedge: the pieces at the tip clash.
-  const auto corner = features::process(
+  const auto corner = process(
       soup_of({CubicBezier::line({0, 0}, {100, 0}), CubicBezier::line({0, 0}, {0, 100})}));
   EXPECT_EQ(count(corner, Kind::secondary), 0);
   const double a = 5 * kPi / 180;
-  const auto wedge = features::process(soup_of(
+  const auto wedge = process(soup_of(
       {CubicBezier::line({0, 0}, {100, 0}), CubicBezier::line({0, 0}, {100 * std::cos(a), 100 * std::sin(a)})}));
   EXPECT_GE(count(wedge, Kind::secondary), 1);
   // Only near the tip: far from it the wedge's sides are more than μ apart.
@@ -104,7 +118,7 @@ TEST(Features, JunctionRule) {
 
 TEST(Features, CrossingCurvesLoseOnlyTheCrossing) {
   // Two crossing lines: near the crossing one of them is secondary, the rest is primary.
-  const auto f = features::process(
+  const auto f = process(
       soup_of({CubicBezier::line({0, 50}, {100, 50}), CubicBezier::line({50, 0}, {50, 100})}));
   double secondary_length = 0, primary_length = 0;
   for (const auto& s : f.sections)
@@ -124,7 +138,7 @@ TEST(Features, SecondaryStaysWithinEpsilon) {
   }
   curves.push_back(CubicBezier::line({0, 0}, {100, 100}));
   const auto soup = soup_of(curves);
-  const auto f = features::process(soup);
+  const auto f = process(soup);
   ASSERT_FALSE(f.segments.empty());
   for (const auto& seg : f.segments) {
     const CubicBezier& c = soup.curves[seg.curve].bezier;
@@ -136,7 +150,7 @@ TEST(Features, SecondaryStaysWithinEpsilon) {
 }
 
 TEST(Features, DegenerateAndStraightCurves) {
-  const auto f = features::process(soup_of({CubicBezier::line({0, 0}, {100, 100}),
+  const auto f = process(soup_of({CubicBezier::line({0, 0}, {100, 100}),
                                             CubicBezier({50, 10}, {50 + 1e-12, 10}, {50, 10}, {50, 10}),
                                             CubicBezier({0, 90}, {30, 90 + 1e-12}, {60, 90}, {90, 90}),
                                             CubicBezier({0, 0}, {0, 50}, {50, 100}, {100, 100})}));
@@ -151,7 +165,7 @@ TEST(Features, IsolatedPointsNearPrimaryFeaturesAreAbsorbed) {
   soup.points.push_back({Vec2(50, 0.01), 0});  // within μ of the line
   soup.points.push_back({Vec2(50, 50), 0});    // far from everything
   soup.points.push_back({Vec2(50, 50.01), 0});  // within μ of the previous point
-  const auto f = features::process(soup);
+  const auto f = process(soup);
   ASSERT_EQ(f.points.size(), 1u);
   EXPECT_EQ(f.points[0].p, Vec2(50, 50));
 }
@@ -160,14 +174,14 @@ TEST(Features, DeterministicAndScaleInvariant) {
   const std::string text = drawing(
       "<path d='M10 10 C 40 90 60 -20 90 50 S 20 80 10 10'/><circle cx='50' cy='50' r='30'/>"
       "<path d='M0 50 L 100 50 M 50 0 L 50 100'/>");
-  const auto a = features::process(svg::read_svg(text));
-  const auto b = features::process(svg::read_svg(text));
+  const auto a = process(read_text(text));
+  const auto b = process(read_text(text));
   ASSERT_EQ(a.sections.size(), b.sections.size());
   for (std::size_t i = 0; i < a.sections.size(); ++i) EXPECT_EQ(a.sections[i].polyline, b.sections[i].polyline);
   // The same drawing scaled by 1e-6 and 1e6 gives the same kinds and counts.
   for (const char* scale : {"1e-6", "1e6"}) {
-    const auto s = features::process(
-        svg::read_svg("<svg><g transform='scale(" + std::string(scale) + ")'>" + text + "</g></svg>"));
+    const auto s = process(
+        read_text("<svg><g transform='scale(" + std::string(scale) + ")'>" + text + "</g></svg>"));
     ASSERT_EQ(s.sections.size(), a.sections.size()) << scale;
     for (std::size_t i = 0; i < a.sections.size(); ++i) {
       EXPECT_EQ(s.sections[i].kind, a.sections[i].kind);
@@ -181,7 +195,7 @@ TEST(Features, CurvesTooTightForAPrimaryEdgeOfLengthLmAreSecondary) {
   // primary. d ≈ 100√2, l_m = 1e-4 d ≈ 0.0141, α / l_m ≈ 12.3; μ = 1e-5 d is small enough for
   // the circles to be μ-separated and large enough not to force pieces shorter than l_m. A circle
   // of radius 0.05 (curvature 20) is secondary; one of radius 0.2 (curvature 5) is primary.
-  features::Options options;
+  pipeline::Parameters options;
   options.mu_rel = 1e-5;
   options.epsilon_rel = 2e-5;
   const auto circle = [](Vec2 c, double r) {
@@ -194,7 +208,7 @@ TEST(Features, CurvesTooTightForAPrimaryEdgeOfLengthLmAreSecondary) {
   std::vector<CubicBezier> curves{CubicBezier::line({0, 0}, {100, 100})};
   for (const auto& c : circle({20, 80}, 0.05)) curves.push_back(c);
   for (const auto& c : circle({80, 20}, 0.2)) curves.push_back(c);
-  const auto f = features::process(soup_of(curves), options);
+  const auto f = process(soup_of(curves), options);
   ASSERT_NEAR(f.lengths.alpha_rad / f.lengths.min_edge, 12.3, 0.1);
   for (const auto& s : f.sections) {
     if (s.curve == 0) continue;
@@ -214,7 +228,7 @@ TEST(Features, CurvesThatFoldBackKeepNoSliverBetweenPrimaryPieces) {
   for (const auto& shape : shapes) for (const double s : {5.0, 10.0, 20.0, 37.0}) {
     const CubicBezier curve(s * shape[0], s * shape[1], s * shape[2], s * shape[3]);
     const auto soup = soup_of({curve, CubicBezier::line({-100, -100}, {100, 100})});
-    const auto f = features::process(soup);
+    const auto f = process(soup);
     std::vector<std::pair<Vec2, Vec2>> edges;
     for (const auto& sec : f.sections)
       if (sec.kind == Kind::primary && sec.curve == 0)
@@ -250,11 +264,11 @@ TEST(Features, PiecesShorterThanTheMinimalEdgeLengthAreSecondary) {
   // d ≈ 100√2, l_m = 1e-4 d ≈ 0.0141: a segment of length 0.01 (straight or a gentle cubic)
   // cannot be a primary edge; one of length 0.02 can. μ is made small so that only the length
   // decides.
-  features::Options options;
+  pipeline::Parameters options;
   options.mu_rel = 1e-6;
   options.epsilon_rel = 2e-6;
   for (const double length : {0.01, 0.02}) {
-    const auto f = features::process(
+    const auto f = process(
         soup_of({CubicBezier::line({0, 0}, {100, 100}), CubicBezier::line({50, 20}, {50 + length, 20}),
                  CubicBezier({20, 50}, {20 + length / 3, 50 + length / 1000},
                              {20 + 2 * length / 3, 50 + length / 1000}, {20 + length, 50})}),

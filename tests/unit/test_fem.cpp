@@ -13,7 +13,7 @@
 #include "fem/drawing.hpp"
 #include "fem/inflate.hpp"
 #include "fem/output.hpp"
-#include "svg/reader.hpp"
+#include "pipeline/output.hpp"
 
 namespace curvemesh::fem {
 namespace {
@@ -181,16 +181,16 @@ TEST(Geometry, InverseFindsTheReferencePointOfACurvedTriangle) {
 }
 
 MeshedDrawing disk(double l) {
-  DrawingOptions o;
-  o.features.edge_length_rel = l;
-  return mesh_drawing(svg::read_svg(disk_svg(), {}, "<disk>"), o);
+  pipeline::Parameters p;
+  p.edge_length_rel = l;
+  return pipeline::mesh_drawing(pipeline::Source::svg(disk_svg(), "<disk>"), p);
 }
 
 TEST(Regions, EvenOddDepthOfASquareWithAHole) {
   const char* text = R"(<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">
     <rect x="1" y="1" width="8" height="8" fill="none" stroke="black"/>
     <circle cx="5" cy="5" r="2" fill="none" stroke="black"/></svg>)";
-  const MeshedDrawing d = mesh_drawing(svg::read_svg(text, {}, "<square>"));
+  const MeshedDrawing d = pipeline::mesh_drawing(pipeline::Source::svg(text, "<square>"));
   const Regions r = find_regions(d.mesh);
   std::set<int> depths(r.depth.begin(), r.depth.end());
   EXPECT_EQ(depths, (std::set<int>{0, 1, 2}));

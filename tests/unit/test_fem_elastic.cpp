@@ -16,7 +16,7 @@
 #include "fem/drawing.hpp"
 #include "fem/elastic.hpp"
 #include "fem/output.hpp"
-#include "svg/reader.hpp"
+#include "pipeline/output.hpp"
 
 namespace curvemesh::fem {
 namespace {
@@ -208,9 +208,9 @@ struct HungRing {
   MeshedDrawing drawing;
   io::HighOrderMesh mesh;
   explicit HungRing(double edge_length_rel) {
-    DrawingOptions options;
-    options.features.edge_length_rel = edge_length_rel;
-    drawing = mesh_drawing(svg::read_svg_file(std::string(CURVEMESH_EXAMPLES) + "/square-with-hole.svg", {}), options);
+    pipeline::Parameters p;
+    p.edge_length_rel = edge_length_rel;
+    drawing = pipeline::mesh_drawing(pipeline::Source::file(std::string(CURVEMESH_EXAMPLES) + "/square-with-hole.svg"), p);
     const Regions regions = find_regions(drawing.mesh);
     std::vector<char> keep(drawing.mesh.triangle_count());
     for (int t = 0; t < drawing.mesh.triangle_count(); ++t) keep[t] = regions.depth[regions.of_triangle[t]] == 1;

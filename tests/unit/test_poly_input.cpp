@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "features/poly_input.hpp"
+#include "pipeline/pipeline.hpp"
 #include "scratch_dir.hpp"
 #include "svg/error.hpp"
 
@@ -23,10 +24,12 @@ std::string write_temp(const ScratchDir& dir, const std::string& name, const std
 
 TEST(PolyInput, SquareWithDiagonalZeroBased) {
   const ScratchDir dir;
-  const auto f = read_poly(write_temp(dir, "square0",
-                                      "# a square\n4 2 0 0\n0 0 0\n1 1 0\n\n2 1 1\n3 0 1\n"
-                                      "5 0\n0 0 1\n1 1 2\n2 2 3\n3 3 0\n4 0 2\n0\n"),
-                           {});
+  // Through the pipeline, which resolves the parameters for the points' box.
+  const auto r = pipeline::run(pipeline::Source::file(write_temp(dir, "square0",
+                                                                 "# a square\n4 2 0 0\n0 0 0\n1 1 0\n\n2 1 1\n3 0 1\n"
+                                                                 "5 0\n0 0 1\n1 1 2\n2 2 3\n3 3 0\n4 0 2\n0\n")),
+                               {}, {pipeline::Stage::features});
+  const features::Features& f = r.features;
   EXPECT_EQ(f.segments.size(), 5u);
   EXPECT_TRUE(f.sections.empty());
   EXPECT_TRUE(f.points.empty());
@@ -41,8 +44,7 @@ TEST(PolyInput, OneBasedWithMarkersAttributesHolesAndComments) {
   const auto f = read_poly(write_temp(dir, "square1",
                                       "4 2 1 1  # attributes and markers\n1 0 0 7 1\n2 2 0 7 1\n3 2 2 7 1\n"
                                       "4 0 2 7 1\n3 1\n1 1 2 1\n2 2 3 1\n3 2 3 0  # duplicate\n"
-                                      "1\n1 0.5 0.5\n"),
-                           {});
+                                      "1\n1 0.5 0.5\n"));
   EXPECT_EQ(f.segments.size(), 2u);  // the duplicate is kept once
   ASSERT_EQ(f.points.size(), 1u);    // vertex 4 is used by no segment
   EXPECT_EQ(f.points[0].p, Vec2(0, 2));
@@ -50,7 +52,7 @@ TEST(PolyInput, OneBasedWithMarkersAttributesHolesAndComments) {
 
 TEST(PolyInput, ZeroLengthSegmentBecomesAPoint) {
   const ScratchDir dir;
-  const auto f = read_poly(write_temp(dir, "zero", "3 2 0 0\n0 0 0\n1 1 0\n2 1 0\n2 0\n0 0 1\n1 1 2\n"), {});
+  const auto f = read_poly(write_temp(dir, "zero", "3 2 0 0\n0 0 0\n1 1 0\n2 1 0\n2 0\n0 0 1\n1 1 2\n"));
   EXPECT_EQ(f.segments.size(), 1u);
   ASSERT_EQ(f.points.size(), 1u);
   EXPECT_EQ(f.points[0].p, Vec2(1, 0));
@@ -60,7 +62,7 @@ void expect_error(const ScratchDir& dir, const std::string& name, const std::str
                   const std::string& fragment, int line) {
   const std::string path = write_temp(dir, name, text);
   try {
-    read_poly(path, {});
+    read_poly(path);
     FAIL() << name << ": accepted";
   } catch (const svg::InputError& e) {
     EXPECT_THAT(e.what(), testing::HasSubstr(fragment)) << name;
@@ -81,7 +83,7 @@ TEST(PolyInput, MalformedFilesNameTheLine) {
   expect_error(dir, "huge", "2000000000 2 0 0\n1 0 0\n", "fewer lines", 1);
   expect_error(dir, "sequence", "2 2 0 0\n1 0 0\n5 1 0\n0\n", "out of sequence", 3);
   expect_error(dir, "no_segments", "2 2 0 0\n1 0 0\n2 1 0\n", "file ends", 3);
-  EXPECT_THROW(read_poly("/nonexistent/x.poly", {}), svg::InputError);
+  EXPECT_THROW(read_poly("/nonexistent/x.poly"), svg::InputError);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "pipeline/parameters.hpp"
 #include "svg/error.hpp"
 #include "svg/reader.hpp"
 
@@ -17,7 +18,14 @@ std::string doc(const std::string& body, const std::string& root_attrs = "") {
          ">" + body + "</svg>";
 }
 
-FeatureSoup read(const std::string& text) { return read_svg(text, {}, "test.svg"); }
+// The reader with the paper's ε_m.
+ReadOptions paper_options() {
+  ReadOptions o;
+  o.degenerate_tolerance_rel = curvemesh::pipeline::Parameters{}.eps_m_rel;
+  return o;
+}
+
+FeatureSoup read(const std::string& text) { return read_svg(text, paper_options(), "test.svg"); }
 
 void expect_point(const Vec2& got, const Vec2& want, double tol = 1e-9) {
   EXPECT_NEAR(got.x(), want.x(), tol);
@@ -25,7 +33,7 @@ void expect_point(const Vec2& got, const Vec2& want, double tol = 1e-9) {
 }
 
 // The error message read_svg throws for `text`, or "" when it does not throw.
-std::string error_of(const std::string& text, const ReadOptions& options = {}) {
+std::string error_of(const std::string& text, const ReadOptions& options = paper_options()) {
   try {
     read_svg(text, options, "bad.svg");
   } catch (const InputError& e) {

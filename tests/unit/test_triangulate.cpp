@@ -9,7 +9,7 @@
 #include <map>
 #include <random>
 
-#include "features/options.hpp"
+#include "pipeline/parameters.hpp"
 #include "triangulate/triangulate.hpp"
 
 namespace curvemesh::triangulate {
@@ -33,8 +33,13 @@ features::Features make_features(const std::vector<std::array<Vec2, 2>>& segment
     f.points.push_back({points[i], int(i)});
     f.box.add(points[i]);
   }
-  f.lengths = features::resolve({}, f.box.diagonal());
+  f.lengths = pipeline::resolve({}, f.box.diagonal()).features;
   return f;
+}
+
+// The stage with the paper's box margin, resolved as the pipeline does.
+Result triangulate(const features::Features& f) {
+  return triangulate::triangulate(f, pipeline::resolve({}, f.box.diagonal()).triangulate);
 }
 
 // Every structural and geometric property the stage promises, checked independently.
@@ -102,9 +107,9 @@ TEST(Triangulate, CrossingSegmentsMeetAtOneExactVertex) {
 
 TEST(Triangulate, BoxHasTheDocumentedMargin) {
   const auto f = make_features({{Vec2(0, 0), Vec2(3, 4)}});
-  Options o;
-  o.box_margin_rel = 0.1;
-  const Result r = triangulate(f, o);
+  pipeline::Parameters p;
+  p.box_margin_rel = 0.1;
+  const Result r = triangulate::triangulate(f, pipeline::resolve(p, f.box.diagonal()).triangulate);
   expect_valid(r, f);
   EXPECT_DOUBLE_EQ(r.box.min.x(), -0.5);
   EXPECT_DOUBLE_EQ(r.box.max.y(), 4.5);
@@ -232,7 +237,7 @@ TEST(Triangulate, PrimarySectionsTagVerticesWithTheirParameter) {
   for (const Vec2& p : s.polyline) f.box.add(p);
   f.box.add(f.segments[0].a);
   f.box.add(f.segments[0].b);
-  f.lengths = features::resolve({}, f.box.diagonal());
+  f.lengths = pipeline::resolve({}, f.box.diagonal()).features;
   const Result r = triangulate(f);
   expect_valid(r, f);
   const mesh::TriMesh& m = r.mesh;
@@ -303,7 +308,7 @@ TEST(Triangulate, Deterministic) {
 
 TEST(Triangulate, EmptyAndSinglePointInputsGiveABox) {
   features::Features empty;
-  empty.lengths = features::resolve({}, 0);
+  empty.lengths = pipeline::resolve({}, 0).features;
   const Result r = triangulate(empty);
   expect_valid(r, empty);
   EXPECT_EQ(r.mesh.triangle_count(), 2);

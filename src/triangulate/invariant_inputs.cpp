@@ -1,10 +1,10 @@
-#include "triangulate/constraints.hpp"
+#include "triangulate/invariant_inputs.hpp"
 
 #include "geometry/bezier_analysis.hpp"
 
 namespace curvemesh::triangulate {
 
-mesh::Constraints constraints_of(const features::Features& features, const geometry::Box2& box) {
+mesh::Constraints invariant_inputs(const features::Features& features, const geometry::Box2& box) {
   mesh::Constraints c;
   c.sections.reserve(features.sections.size());
   for (const features::Section& s : features.sections)

@@ -1,0 +1,55 @@
+#pragma once
+// curvemesh's parameters and its one error type: plain C++, no dependency. Part of the public
+// API (curvemesh/curvemesh.hpp includes it); the library's pipeline resolves these same
+// parameters for each drawing.
+#include <stdexcept>
+#include <string>
+
+namespace curvemesh {
+
+// The method's parameters with the paper's symbols and defaults (TriWild, Hu et al. 2019: §4,
+// §4.1, §4.2). Lengths are relative to d, the diagonal of the drawing's bounding box; each is
+// made absolute once d is known. Each field is the command line's long option of the same name
+// (`mu_rel` is --mu, `edge_length_rel` is -l/--edge-length, `alpha_deg` is --min-angle, ...).
+struct Parameters {
+  // §4: feature processing.
+  double mu_rel = 1e-3;               // --mu: μ, feature envelope; min distance between primary features
+  double epsilon_rel = 2e-3;          // --epsilon: ε, envelope of secondary features (2μ); at least μ
+  double eps_m_rel = 1e-8;            // --eps-m: ε_m, round-off tolerance on control points
+  double alpha_deg = 10.0;            // --min-angle: α, max turning per primary edge; target min angle
+  double edge_length_rel = 1.0 / 20;  // --edge-length: l, the target edge length
+  double min_edge_length_rel = 1e-4;  // --min-edge-length: l_m; curvature above α / l_m is secondary
+  double junction_angle_deg = 10.0;   // --junction-angle: primary pieces sharing an end meet at least at this
+  // §4.1: the meshed box and the linear optimization's stop.
+  double box_margin_rel = 0.05;  // --box-margin: the box grows the drawing's bounds by this on every side
+  int max_iterations = 80;       // --max-iterations: optimization passes at most
+  double stop_amips = 10.0;      // --stop-amips: ... or once every triangle's AMIPS energy is at most this
+  // §4.2: curving.
+  bool linear = false;  // --linear: straight 3-node triangles instead of cubic 10-node ones
+  double curved_stop_amips =
+      20.0;                    // --curved-stop-amips: step 4 stops once every curved triangle is at most this
+  int max_curved_passes = 10;  // --max-curved-passes: ... or after this many passes
+
+  // Throws Error (Error::Kind::invalid_parameters) naming the first inconsistent parameter by
+  // its command-line option, e.g. "--epsilon (0.0005) must be at least --mu (0.001)".
+  void validate() const;
+};
+
+// Every failure curvemesh reports. what() is the message the command line prints after
+// "curvemesh: "; it names the input (file, line and element where it can).
+class Error : public std::runtime_error {
+ public:
+  enum class Kind {
+    invalid_parameters,  // Parameters::validate refused them (the command line's exit code 2)
+    invalid_input,       // the drawing cannot be read or has nothing to mesh (exit code 1)
+    output,              // a file could not be written (exit code 1)
+    internal,            // a mesh that could not be made valid and certified: a bug (exit code 3)
+  };
+  Error(Kind kind, const std::string& message) : std::runtime_error(message), kind_(kind) {}
+  Kind kind() const { return kind_; }
+
+ private:
+  Kind kind_;
+};
+
+}  // namespace curvemesh

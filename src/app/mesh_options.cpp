@@ -1,0 +1,86 @@
+#include "app/mesh_options.hpp"
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <map>
+
+namespace curvemesh::app {
+
+void add_feature_options(CLI::App& cmd, pipeline::Parameters& p) {
+  cmd.add_option("--mu", p.mu_rel,
+                 "feature envelope mu, relative to d: min distance between primary features")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--epsilon", p.epsilon_rel,
+                 "envelope epsilon of secondary features, relative to d; at least mu")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("-l,--edge-length", p.edge_length_rel, "target edge length l, relative to d")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--min-edge-length", p.min_edge_length_rel,
+                 "minimal edge length l_m, relative to d: pieces shorter than l_m, or curving more than "
+                 "alpha/l_m (a primary edge turning alpha would be shorter than l_m), are secondary")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--min-angle", p.alpha_deg,
+                 "alpha in degrees: max turning of the curve along one primary edge (target min angle)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 60.0));
+  cmd.add_option(
+         "--junction-angle", p.junction_angle_deg,
+         "primary pieces sharing an endpoint stay primary when they meet at least at this angle (deg)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 180.0));
+  cmd.add_option(
+         "--eps-m,--degenerate-tolerance", p.eps_m_rel,
+         "round-off tolerance epsilon_m, relative to d: paths whose control points all lie within it of "
+         "each other become isolated points, curves within it of a line become straight")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+}
+
+std::vector<const CLI::Option*> add_mesh_options(CLI::App& cmd, pipeline::Parameters& p, int& msh_version) {
+  const std::size_t first = cmd.get_options().size();
+  cmd.add_flag("--linear", p.linear,
+               "make a linear mesh (straight-sided 3-node triangles) instead of a curved one");
+  cmd.add_option("--msh-version", msh_version, "Gmsh file format: 41 (4.1) or 22 (2.2)")
+      ->capture_default_str()
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, int>{{"4.1", 41}, {"41", 41}, {"2.2", 22}, {"22", 22}}));
+  add_feature_options(cmd, p);
+  cmd.add_option("--max-iterations", p.max_iterations, "optimization passes at most")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd.add_option("--stop-amips", p.stop_amips,
+                 "optimization stops once every triangle's AMIPS energy is at most this (2 = equilateral)")
+      ->capture_default_str()
+      ->check(CLI::Range(2.0, 1e9));
+  cmd.add_option("--box-margin", p.box_margin_rel,
+                 "the meshed box extends the drawing's bounding box by this, relative to d, on every side")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-3, 10.0));
+  cmd.add_option("--curved-stop-amips", p.curved_stop_amips,
+                 "curving: smoothing and local operations stop once every curved triangle's AMIPS energy is "
+                 "at most this")
+      ->capture_default_str()
+      ->check(CLI::Range(2.0, 1e9));
+  cmd.add_option("--max-curved-passes", p.max_curved_passes,
+                 "curving: smoothing and operation passes at most")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  const auto all = cmd.get_options();
+  return {all.begin() + static_cast<std::ptrdiff_t>(first), all.end()};
+}
+
+bool parameters_valid(const pipeline::Parameters& p) {
+  try {
+    p.validate();
+    return true;
+  } catch (const Error& e) {
+    std::cerr << "curvemesh: " << e.what() << "\n";
+    return false;
+  }
+}
+
+}  // namespace curvemesh::app

@@ -1,0 +1,27 @@
+#pragma once
+// The method's parameters on the command line, registered in one place for every command that
+// meshes: the feature options (§4) for `features`, `solve` and `diffuse`, and the whole set for
+// `mesh` and `batch`. Checked again, all together, by pipeline::Parameters::validate.
+#include <vector>
+
+#include "pipeline/parameters.hpp"
+
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
+
+namespace curvemesh::app {
+
+// --mu, --epsilon, -l/--edge-length, --min-edge-length, --min-angle, --junction-angle, --eps-m.
+void add_feature_options(CLI::App& cmd, pipeline::Parameters& parameters);
+
+// --linear, --msh-version, the feature options, --max-iterations, --stop-amips, --box-margin,
+// --curved-stop-amips, --max-curved-passes. Returns the options it registered, in order.
+std::vector<const CLI::Option*> add_mesh_options(CLI::App& cmd, pipeline::Parameters& parameters,
+                                                 int& msh_version);
+
+// Whether the parameters are consistent; if not, says why on stderr.
+bool parameters_valid(const pipeline::Parameters& parameters);
+
+}  // namespace curvemesh::app

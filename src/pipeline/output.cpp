@@ -1,0 +1,97 @@
+#include "pipeline/output.hpp"
+
+#include <stdexcept>
+
+#include "io/curved_mesh.hpp"
+#include "io/mesh_svg.hpp"
+#include "io/msh_writer.hpp"
+#include "io/output_file.hpp"
+#include "io/vtu_writer.hpp"
+
+namespace curvemesh::pipeline {
+
+namespace {
+
+void require_mesh(const Result& r) {
+  if (r.last < Stage::triangulate) throw std::logic_error("the pipeline stopped before making a mesh");
+}
+
+std::array<double, 3> rgb_of(const svg::Paint& p) {
+  return {p.r / 255.0, p.g / 255.0, p.b / 255.0};
+}
+
+bool is_colour(const svg::Paint& p) {
+  return p.kind == svg::Paint::Kind::color;
+}
+
+}  // namespace
+
+io::HighOrderMesh high_order_mesh(const Result& r) {
+  require_mesh(r);
+  return r.curved ? io::curved_mesh(*r.curved) : io::linear_mesh(r.linear);
+}
+
+void write_msh(const Result& r, const std::string& path, int version) {
+  require_mesh(r);
+  if (r.curved)
+    io::write_msh(io::curved_mesh(*r.curved), path, io::MshOptions{version});
+  else
+    io::write_msh(r.linear, path, io::MshOptions{version});
+}
+
+void write_vtu(const Result& r, const std::string& path) {
+  io::write_vtu(high_order_mesh(r), path);
+}
+
+void write_svg(const Result& r, const std::string& path) {
+  require_mesh(r);
+  io::write_file_atomically(path, r.curved ? io::mesh_svg(*r.curved) : io::mesh_svg(r.linear));
+}
+
+std::vector<SideColours> curve_colours(const svg::FeatureSoup& soup) {
+  std::vector<SideColours> out;
+  out.reserve(soup.curves.size());
+  for (const svg::SoupCurve& c : soup.curves) {
+    const auto both = is_colour(c.stroke) ? rgb_of(c.stroke)
+                      : is_colour(c.fill) ? rgb_of(c.fill)
+                                          : std::array<double, 3>{0, 0, 0};
+    out.push_back({is_colour(c.left) ? rgb_of(c.left) : both, is_colour(c.right) ? rgb_of(c.right) : both});
+  }
+  return out;
+}
+
+MeshedDrawing meshed_drawing(const Result& r) {
+  if (!r.curved) throw std::logic_error("meshed_drawing: the pipeline did not curve the mesh");
+  const curve::CurvedMesh& curved = *r.curved;
+  MeshedDrawing out;
+  out.mesh = io::curved_mesh(curved);
+  out.diagonal = r.resolved.d;
+  out.colours = curve_colours(r.soup);
+  for (const auto& [stage, s] : r.stats["seconds"].items()) out.seconds += s.get<double>();
+  for (const curve::FeatureLine& line : curved.lines) {
+    const int a = line.nodes[0], b = line.nodes[1];
+    const auto feature = curved.linear.feature(a, b);
+    out.line_curve.push_back(feature ? feature->curve : -1);
+    // EdgeFeature's parameters are at the lower- and higher-numbered vertex. A secondary edge
+    // has none (its vertices move within ε of the input): it follows its input segment, which runs
+    // from the segment's t0 to its t1, when it points the same way.
+    bool forward = true;
+    if (feature && feature->kind == mesh::EdgeKind::primary)
+      forward = (a < b) == (feature->t_lo < feature->t_hi);
+    if (feature && feature->kind == mesh::EdgeKind::secondary && feature->source >= 0) {
+      const features::Segment& s = r.features.segments[feature->source];
+      const double along = (curved.linear.point(b) - curved.linear.point(a)).dot(s.b - s.a);
+      forward = (along > 0) == (s.t0 <= s.t1);
+    }
+    out.line_forward.push_back(forward);
+  }
+  return out;
+}
+
+MeshedDrawing mesh_drawing(const Source& source, const Parameters& parameters) {
+  Parameters curved = parameters;
+  curved.linear = false;
+  return meshed_drawing(run(source, curved));
+}
+
+}  // namespace curvemesh::pipeline

@@ -1,0 +1,34 @@
+#pragma once
+// What a pipeline result becomes: the mesh as files (.msh, .vtu, .svg), as a plain high-order
+// mesh, and as the finished drawing the applications solve on.
+#include <string>
+#include <vector>
+
+#include "io/high_order_mesh.hpp"
+#include "pipeline/meshed_drawing.hpp"
+#include "pipeline/pipeline.hpp"
+
+namespace curvemesh::pipeline {
+
+// The result's mesh (curved when it was curved, else linear) as plain arrays. Throws
+// std::logic_error when no stage made a mesh.
+io::HighOrderMesh high_order_mesh(const Result& result);
+
+// Gmsh .msh (version 41 or 22), VTK .vtu, and an SVG drawing of the mesh; each written whole or
+// not at all (io::OutputError).
+void write_msh(const Result& result, const std::string& path, int version = 41);
+void write_vtu(const Result& result, const std::string& path);
+void write_svg(const Result& result, const std::string& path);
+
+// Each soup curve's colour on its two sides: its data-color-left / data-color-right where given,
+// else its stroke colour, else its fill colour, else black.
+std::vector<SideColours> curve_colours(const svg::FeatureSoup& soup);
+
+// The curved result as the applications take it. Throws std::logic_error when it was not curved.
+MeshedDrawing meshed_drawing(const Result& result);
+
+// The whole pipeline on SVG text with the parameters (curved), as the applications take it.
+// Throws what run() throws.
+MeshedDrawing mesh_drawing(const Source& source, const Parameters& parameters = {});
+
+}  // namespace curvemesh::pipeline

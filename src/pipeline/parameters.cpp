@@ -1,0 +1,84 @@
+#include "pipeline/parameters.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+namespace curvemesh {
+
+namespace {
+
+// "--epsilon (0.0005) must be ...": the option's name and the value as given.
+[[noreturn]] void refuse(const char* option, double value, const std::string& must) {
+  std::ostringstream s;
+  s << option << " (" << value << ") must be " << must;
+  throw Error(Error::Kind::invalid_parameters, s.str());
+}
+
+void positive(const char* option, double value) {
+  if (!(std::isfinite(value) && value > 0)) refuse(option, value, "a positive number");
+}
+
+void within(const char* option, double value, double lo, double hi) {
+  if (!(value >= lo && value <= hi)) {
+    std::ostringstream range;
+    range << "in [" << lo << ", " << hi << "]";
+    refuse(option, value, range.str());
+  }
+}
+
+double radians(double degrees) {
+  return degrees * std::numbers::pi / 180.0;
+}
+
+}  // namespace
+
+void Parameters::validate() const {
+  positive("--mu", mu_rel);
+  positive("--epsilon", epsilon_rel);
+  // ε below μ cannot be honoured: resampling already puts secondary chords up to μ from their curves.
+  if (epsilon_rel < mu_rel) {
+    std::ostringstream mu;
+    mu << "at least --mu (" << mu_rel << ")";
+    refuse("--epsilon", epsilon_rel, mu.str());
+  }
+  if (!(std::isfinite(eps_m_rel) && eps_m_rel >= 0)) refuse("--eps-m", eps_m_rel, "a non-negative number");
+  positive("--edge-length", edge_length_rel);
+  positive("--min-edge-length", min_edge_length_rel);
+  within("--min-angle", alpha_deg, 0.1, 60.0);
+  within("--junction-angle", junction_angle_deg, 0.0, 180.0);
+  within("--box-margin", box_margin_rel, 1e-3, 10.0);
+  if (max_iterations < 0) refuse("--max-iterations", max_iterations, "a non-negative number");
+  within("--stop-amips", stop_amips, 2.0, 1e9);
+  within("--curved-stop-amips", curved_stop_amips, 2.0, 1e9);
+  if (max_curved_passes < 0) refuse("--max-curved-passes", max_curved_passes, "a non-negative number");
+}
+
+namespace pipeline {
+
+Resolved resolve(const Parameters& p, double diagonal) {
+  Resolved r;
+  r.d = diagonal > 0 ? diagonal : 1.0;
+  features::Lengths& l = r.features;
+  l.d = r.d;
+  l.mu = p.mu_rel * r.d;
+  l.epsilon = p.epsilon_rel * r.d;
+  l.eps_m = p.eps_m_rel * r.d;
+  l.edge = p.edge_length_rel * r.d;
+  l.min_edge = p.min_edge_length_rel * r.d;
+  l.alpha_rad = radians(p.alpha_deg);
+  l.junction_angle_rad = radians(p.junction_angle_deg);
+  r.triangulate.box_margin = std::max(p.box_margin_rel, 0.0) * r.d;
+  r.optimize.edge_length = l.edge;
+  r.optimize.min_edge_length = l.min_edge;
+  r.optimize.max_iterations = p.max_iterations;
+  r.optimize.stop_min_angle_deg = p.alpha_deg;  // the target min angle is α
+  r.optimize.stop_max_amips = p.stop_amips;
+  r.curve.stop_amips = p.curved_stop_amips;
+  r.curve.max_smoothing_passes = p.max_curved_passes;
+  return r;
+}
+
+}  // namespace pipeline
+}  // namespace curvemesh

@@ -1,0 +1,226 @@
+#include "pipeline/pipeline.hpp"
+
+#include <chrono>
+
+#include "features/poly_input.hpp"
+#include "svg/error.hpp"
+#include "svg/reader.hpp"
+#include "triangulate/invariant_inputs.hpp"
+
+namespace curvemesh::pipeline {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Json = nlohmann::ordered_json;
+
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+Json quality_json(const optimize::Quality& q) {
+  return {{"vertices", q.vertices},   {"triangles", q.triangles},   {"min_angle_deg", q.min_angle_deg},
+          {"max_amips", q.max_amips}, {"mean_amips", q.mean_amips}, {"mean_edge_length", q.mean_edge_length}};
+}
+
+Json optimize_json(const optimize::Stats& s) {
+  return {{"iterations", s.iterations},
+          {"stop_reason", s.stop_reason},
+          {"splits", s.splits},
+          {"collapses", s.collapses},
+          {"swaps", s.swaps},
+          {"smooths", s.smooths},
+          {"projections", s.projections},
+          {"released_secondary_edges", s.released},
+          {"unprojected_vertices", s.unprojected},
+          {"exact_vertices_left", s.exact_left}};
+}
+
+Json curve_json(const curve::Stats& s, double d) {
+  return {{"split_triangles", s.split_triangles},
+          {"primary_edges", s.primary_edges},
+          {"curved_edges", s.curved_edges},
+          {"fitted_edges", s.fitted_edges},
+          {"straight_primary_edges", s.straight_primary_edges},
+          {"curved_triangles", s.curved_triangles},
+          {"alternative_centres", s.alternative_centres},
+          {"invalid_triangles", s.invalid_triangles},
+          {"min_scaled_jacobian", s.min_scaled_jacobian},
+          {"max_amips_before_smoothing", s.max_amips_before_smoothing},
+          {"smoothing_moves", s.smoothing_moves},
+          {"curved_splits", s.curved_splits},
+          {"curved_collapses", s.curved_collapses},
+          {"curved_swaps", s.curved_swaps},
+          {"late_projections", s.late_projections},
+          {"max_amips", s.max_amips},
+          {"mean_amips", s.mean_amips},
+          {"max_distance", s.max_distance},
+          {"max_distance_rel", s.max_distance / d},
+          {"mean_fit_distance_rel", s.mean_fit_distance / d}};
+}
+
+Error invalid(const std::string& message) {
+  return Error(Error::Kind::invalid_input, message);
+}
+Error internal(const std::string& message) {
+  return Error(Error::Kind::internal, message);
+}
+
+}  // namespace
+
+const char* stage_name(Stage stage) {
+  switch (stage) {
+    case Stage::read:
+      return "read";
+    case Stage::features:
+      return "features";
+    case Stage::triangulate:
+      return "triangulate";
+    case Stage::optimize:
+      return "optimize";
+    case Stage::curve:
+      return "curve";
+  }
+  return "?";
+}
+
+std::optional<Stage> stage_named(const std::string& name) {
+  for (Stage s : {Stage::read, Stage::features, Stage::triangulate, Stage::optimize, Stage::curve})
+    if (name == stage_name(s)) return s;
+  return std::nullopt;
+}
+
+Source Source::file(std::string path) {
+  Source s;
+  s.kind = Kind::file;
+  s.name = path;
+  s.path = std::move(path);
+  return s;
+}
+
+Source Source::svg(std::string text, std::string name) {
+  Source s;
+  s.kind = Kind::svg_text;
+  s.text = std::move(text);
+  s.name = std::move(name);
+  return s;
+}
+
+Source Source::curves(svg::FeatureSoup soup, std::string name) {
+  Source s;
+  s.kind = Kind::soup;
+  s.soup = std::move(soup);
+  s.name = std::move(name);
+  return s;
+}
+
+Result run(const Source& source, const Parameters& parameters, const RunOptions& options) {
+  parameters.validate();
+  Result r;
+  r.name = source.name;
+  r.parameters = parameters;
+  const Stage last =
+      parameters.linear && options.stop_after == Stage::curve ? Stage::optimize : options.stop_after;
+  Json& stats = r.stats;
+  const auto warn = [&](const std::string& w) {
+    r.warnings.push_back(w);
+    if (options.warn) options.warn(w);
+  };
+  stats["input"] = source.name;
+  auto t = Clock::now();
+
+  // Read, and (unless stopping there) find the features.
+  try {
+    if (source.kind == Source::Kind::file && ends_with(source.path, ".poly")) {
+      r.features = features::read_poly(source.path);
+      r.resolved = resolve(parameters, r.features.box.diagonal());
+      r.features.lengths = r.resolved.features;
+      stats["seconds"]["read"] = seconds_since(t);
+      stats["seconds"]["features"] = 0.0;
+      r.last = Stage::features;
+    } else {
+      svg::ReadOptions read;
+      read.degenerate_tolerance_rel = parameters.eps_m_rel;
+      if (source.kind == Source::Kind::file)
+        r.soup = svg::read_svg_file(source.path, read);
+      else if (source.kind == Source::Kind::svg_text)
+        r.soup = svg::read_svg(source.text, read, source.name);
+      else
+        r.soup = source.soup;
+      for (const std::string& w : r.soup.warnings) warn(w);
+      stats["seconds"]["read"] = seconds_since(t);
+      r.resolved = resolve(parameters, features::drawing_box(r.soup).diagonal());
+      if (last == Stage::read) return r;
+      t = Clock::now();
+      r.features = features::process(r.soup, r.resolved.features);
+      stats["seconds"]["features"] = seconds_since(t);
+      r.last = Stage::features;
+    }
+  } catch (const svg::InputError& e) {
+    throw invalid(e.what());
+  }
+  const features::Features& f = r.features;
+  int primary = 0;
+  for (const auto& s : f.sections) primary += s.kind == features::Kind::primary;
+  stats["features"] = {
+      {"primary_sections", primary}, {"secondary_segments", f.segments.size()}, {"points", f.points.size()}};
+  if (last == Stage::features) return r;
+
+  if (f.box.empty()) throw invalid(source.name + ": nothing to mesh (no curves, segments or points)");
+  if (f.sections.empty() && f.segments.empty() && f.points.empty())
+    warn("nothing is drawn; meshing the canvas alone");
+
+  t = Clock::now();
+  triangulate::Result tri = triangulate::triangulate(f, r.resolved.triangulate);
+  stats["seconds"]["triangulate"] = seconds_since(t);
+  stats["triangulate"] = {{"vertices", tri.stats.vertices},
+                          {"triangles", tri.stats.triangles},
+                          {"exact_vertices", tri.stats.exact_vertices}};
+  r.box = tri.box;
+  r.triangulate_stats = tri.stats;
+  r.linear = std::move(tri.mesh);
+  r.constraints = triangulate::invariant_inputs(f, r.box);
+  r.last = Stage::triangulate;
+
+  if (last != Stage::triangulate) {
+    t = Clock::now();
+    optimize::Options o = r.resolved.optimize;
+    o.log = options.log;
+    r.optimize_stats = optimize::optimize(r.linear, r.constraints, o);
+    stats["seconds"]["optimize"] = seconds_since(t);
+    stats["optimize"] = optimize_json(r.optimize_stats);
+    r.last = Stage::optimize;
+  }
+  r.quality = optimize::measure(r.linear);
+  stats["mesh"] = quality_json(r.quality);
+  stats["mesh"]["target_edge_length"] = r.resolved.features.edge;
+
+  if (const auto error = r.linear.structure_error())
+    // Every operation checks its result exactly, so this is a bug; refuse rather than give it out.
+    throw internal("internal error: " + source.name + ": the mesh is broken (" + *error + ")");
+  if (r.linear.exact_vertex_count() > 0)
+    // Rounded coordinates could invert a triangle: refuse instead.
+    throw internal(source.name + ": " + std::to_string(r.linear.exact_vertex_count()) +
+                   " vertices still have exact coordinates that do not round to doubles without inverting a "
+                   "triangle");
+  if (last != Stage::curve) return r;
+
+  t = Clock::now();
+  curve::Stats& s = r.curve_stats;
+  r.curved = curve::curve(std::move(r.linear), r.constraints, r.resolved.curve, &s);
+  r.linear = mesh::TriMesh();
+  stats["seconds"]["curve"] = seconds_since(t);
+  stats["curve"] = curve_json(s, r.resolved.d);
+  stats["mesh"]["triangles"] = r.curved->triangles.size();
+  r.last = Stage::curve;
+  if (s.invalid_triangles > 0)
+    throw internal("internal error: " + source.name + ": " + std::to_string(s.invalid_triangles) +
+                   " curved triangles could not be certified valid");
+  return r;
+}
+
+}  // namespace curvemesh::pipeline

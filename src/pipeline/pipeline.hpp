@@ -1,0 +1,80 @@
+#pragma once
+// The one driver of the method: read → features (§4) → triangulate → optimize (§4.1) → curve
+// (§4.2), with the parameters resolved once, a stop after any stage, what each stage made, and
+// the statistics `curvemesh mesh --stats` writes. The command line, the solvers, the public API,
+// the Python module, the benchmarks and the tests all mesh through it.
+#include <functional>
+#include <iosfwd>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "curve/curve.hpp"
+#include "features/features.hpp"
+#include "mesh/constraints.hpp"
+#include "mesh/tri_mesh.hpp"
+#include "optimize/optimize.hpp"
+#include "pipeline/parameters.hpp"
+#include "svg/feature_soup.hpp"
+#include "triangulate/triangulate.hpp"
+
+namespace curvemesh::pipeline {
+
+enum class Stage { read, features, triangulate, optimize, curve };
+
+const char* stage_name(Stage stage);
+// "read", "features", "triangulate", "optimize", "curve"; nothing for another name.
+std::optional<Stage> stage_named(const std::string& name);
+
+// What to mesh: an SVG or Triangle .poly file, SVG text, or a soup of curves made by the caller.
+struct Source {
+  enum class Kind { file, svg_text, soup } kind = Kind::file;
+  std::string path;       // file: its path (a name ending in .poly is read as Triangle's format)
+  std::string text;       // svg_text: the document
+  svg::FeatureSoup soup;  // soup: the curves and points
+  std::string name;       // what messages and statistics call the input
+
+  static Source file(std::string path);
+  static Source svg(std::string text, std::string name = "<svg>");
+  static Source curves(svg::FeatureSoup soup, std::string name = "<curves>");
+};
+
+struct RunOptions {
+  // The last stage to run; past `optimize` only when the parameters are not linear.
+  Stage stop_after = Stage::curve;
+  std::ostream* log = nullptr;  // one line per optimization pass when set
+  // Called with each warning as it arises (they are in Result::warnings too).
+  std::function<void(const std::string&)> warn;
+};
+
+struct Result {
+  std::string name;  // Source::name
+  Parameters parameters;
+  Resolved resolved;                        // the parameters in absolute units (d is the box's diagonal)
+  Stage last = Stage::read;                 // the last stage that ran
+  std::vector<std::string> warnings;        // for the user: the reader's, and "nothing is drawn"
+  svg::FeatureSoup soup;                    // read (empty for a .poly file)
+  features::Features features;              // features
+  geometry::Box2 box;                       // triangulate: the outer box
+  mesh::Constraints constraints;            // triangulate: what the invariants know of the features
+  mesh::TriMesh linear;                     // triangulate, optimize (moved into `curved` by curve)
+  optimize::Quality quality;                // of the linear mesh, after triangulate or optimize
+  std::optional<curve::CurvedMesh> curved;  // curve
+  triangulate::Stats triangulate_stats;
+  optimize::Stats optimize_stats;
+  curve::Stats curve_stats;
+  nlohmann::ordered_json stats;  // counts, quality and seconds per stage, as --stats writes them
+
+  // The linear mesh: the optimized one, or the curved mesh's corners after curve's step 1.
+  const mesh::TriMesh& corners() const { return curved ? curved->linear : linear; }
+};
+
+// Runs the stages up to options.stop_after (at most `optimize` when parameters.linear). Throws
+// curvemesh::Error: invalid_parameters, invalid_input when the drawing cannot be read or has
+// nothing to mesh, internal when the mesh cannot be given out. A mesh it returns is valid: no
+// broken structure, every vertex in doubles, every curved triangle certified.
+Result run(const Source& source, const Parameters& parameters, const RunOptions& options = {});
+
+}  // namespace curvemesh::pipeline
