@@ -23,6 +23,7 @@
 
 #include "curve/curve.hpp"
 #include "geometry/p3_triangle.hpp"
+#include "mesh/invariants.hpp"
 
 namespace curvemesh::curve::detail {
 
@@ -91,8 +92,6 @@ class Builder {
   std::vector<int> bad_triangles() const;
   int smooth_pass();
   int move_corner(int v);
-  bool corners_valid_with(int v, const Vec2& p) const;
-  bool secondary_edges_inside_with(int v, const Vec2& p) const;
   void place_corner(int v, const Vec2& p);
   // The two neighbours of primary vertex v along its section, and their parameters.
   struct CurveNeighbours {
@@ -124,7 +123,8 @@ class Builder {
     for (int w : m.neighbours(v)) shortest = std::min(shortest, (m.point(w) - m.point(v)).norm());
     const Snapshot saved = snapshot(m.triangles_of(v));
     return compass_search(at(v), 0.25 * shortest, [&](const Vec2& p) {
-      if (!corners_valid_with(v, p) || !secondary_edges_inside_with(v, p)) return std::numeric_limits<double>::infinity();
+      if (!mesh::star_valid_at(m, v, p) || !mesh::secondary_edges_inside(m, c_, v, p))
+        return std::numeric_limits<double>::infinity();
       place_corner(v, p);
       const double worst = star_worst(v, measure);
       restore(saved);

@@ -57,28 +57,6 @@ int Builder::move_corner(int v) {
   return 0;
 }
 
-// Whether v's triangles stay counter-clockwise (exactly, as straight triangles) with v at p.
-bool Builder::corners_valid_with(int v, const Vec2& p) const {
-  const TriMesh& m = out_.linear;
-  for (int t : m.triangles_of(v)) {
-    const auto& tri = m.triangle(t);
-    if (m.orientation_with(tri[0], tri[1], tri[2], v, p) <= 0) return false;
-  }
-  return true;
-}
-
-// Whether v's secondary edges stay inside the ε-envelope of the secondary input with v at p
-// (invariant 2 of §4.1).
-bool Builder::secondary_edges_inside_with(int v, const Vec2& p) const {
-  const TriMesh& m = out_.linear;
-  if (m.tag(v).kind != mesh::VertexKind::secondary) return true;
-  for (int w : m.neighbours(v)) {
-    const mesh::EdgeFeature* f = m.feature(v, w);
-    if (f && f->kind == EdgeKind::secondary && !c_.envelope.contains(p, m.point(w))) return false;
-  }
-  return true;
-}
-
 // Places the nodes that depend on corner v's position (and, on a curve, on its parameter): v,
 // the inner nodes of its edges (curved ones on their curve, at thirds of their parameter
 // interval; straight ones at thirds), and the centres of its triangles (straight: the
@@ -159,7 +137,7 @@ int Builder::smooth_curve_corner(int v) {
   const mesh::SectionCurve& curve = c_.sections[tag0.section];
   const double lo = std::min(n.tx, n.ty), hi = std::max(n.tx, n.ty), margin = 1e-3 * (hi - lo);
   const auto objective = [&](double t) {
-    if (!(t > lo + margin && t < hi - margin) || !corners_valid_with(v, curve.eval(t)))
+    if (!(t > lo + margin && t < hi - margin) || !mesh::star_valid_at(m, v, curve.eval(t)))
       return std::numeric_limits<double>::infinity();
     place_on_curve_at(v, n, t);
     const double e = star_worst(v, energy_of);
@@ -198,7 +176,7 @@ int Builder::project(int v) {
   const geometry::ClosestPoint cp = geometry::closest_point(curve.piece, m.point(v));
   const double t = std::clamp(curve.t0 + cp.t * (curve.t1 - curve.t0), lo + margin, hi - margin);
   const Vec2 p = curve.eval(t);
-  if (!corners_valid_with(v, p)) return 0;
+  if (!mesh::star_valid_at(m, v, p)) return 0;
   const auto& star = m.triangles_of(v);
   const Snapshot saved = snapshot(star);
   const mesh::EdgeFeature fx = *m.feature(v, n.x), fy = *m.feature(v, n.y);
