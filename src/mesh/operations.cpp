@@ -8,6 +8,7 @@
 #include "geometry/amips.hpp"
 #include "geometry/bezier_analysis.hpp"
 #include "geometry/closest_point.hpp"
+#include "geometry/vec2.hpp"
 #include "mesh/invariants.hpp"
 
 namespace curvemesh::mesh {
@@ -513,7 +514,7 @@ bool release_secondary_edge(TriMesh& m, const Constraints& c, int a, int b) {
       const double chord = (m.point(a) - m.point(b)).squaredNorm();
       if (!(chord > (m.point(a) - m.point(x)).squaredNorm() && chord > (m.point(x) - m.point(b)).squaredNorm())) continue;
       const Vec2 ab = m.point(b) - m.point(a), to_x = m.point(x) - m.point(a);
-      const double height = std::abs(ab.x() * to_x.y() - ab.y() * to_x.x()) / std::sqrt(chord);
+      const double height = std::abs(geometry::cross(ab, to_x)) / std::sqrt(chord);
       if (!(height <= 1e-9 * std::sqrt(chord))) continue;
       if (!c.envelope.contains(m.point(a), m.point(x)) || !c.envelope.contains(m.point(x), m.point(b))) continue;
       m.clear_feature(a, b);
