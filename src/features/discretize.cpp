@@ -6,6 +6,7 @@
 
 #include "features/pieces.hpp"
 #include "geometry/bezier_analysis.hpp"
+#include "geometry/vec2.hpp"
 
 namespace curvemesh::features::detail {
 
@@ -40,7 +41,7 @@ double sampled_curvature(const CubicBezier& c) {
   for (const double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
     const Vec2 d1 = c.derivative(t), d2 = c.second_derivative(t);
     const double speed = d1.norm();
-    const double cross = std::abs(d1.x() * d2.y() - d1.y() * d2.x());
+    const double cross = std::abs(geometry::cross(d1, d2));
     if (speed <= 1e-300) return INFINITY;
     worst = std::max(worst, cross / (speed * speed * speed));
   }

@@ -21,6 +21,7 @@
 #include <numeric>
 
 #include "features/pieces.hpp"
+#include "geometry/vec2.hpp"
 
 namespace curvemesh::features::detail {
 
@@ -34,7 +35,7 @@ Box box_of(const Vec2& a, const Vec2& b, double grow, int index) {
   return Box(lo, hi, index);
 }
 
-double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
+using geometry::cross;
 
 double point_segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
   const Vec2 ab = b - a;

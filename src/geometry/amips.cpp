@@ -13,8 +13,6 @@ namespace {
 // D = 2√3 det[e1 e2]. Everything is computed from differences, so it is as accurate at 1e-6 as at 1e6.
 constexpr double kTwoSqrt3 = 3.4641016151377544;  // 2√3
 
-double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
-
 }  // namespace
 
 double amips_of_edges(const Vec2& e1, const Vec2& e2) {

@@ -11,8 +11,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
-
 // stableNorm: the squares of coordinates near 1e-300 would underflow.
 double polygon_size(const CubicBezier& c) {
   return (c.p[1] - c.p[0]).stableNorm() + (c.p[2] - c.p[1]).stableNorm() + (c.p[3] - c.p[2]).stableNorm();

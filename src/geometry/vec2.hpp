@@ -9,6 +9,13 @@ namespace curvemesh::geometry {
 
 using Vec2 = Eigen::Vector2d;
 
+// The cross product of two plane vectors (the z of their 3D one): u.x·v.y − u.y·v.x, the signed
+// area of the parallelogram they span. In doubles: where a sign decides topology (orientation,
+// intersection), geometry/predicates decides it exactly instead.
+inline double cross(const Vec2& u, const Vec2& v) {
+  return u.x() * v.y() - u.y() * v.x();
+}
+
 // An axis-aligned box; empty until the first point is added.
 struct Box2 {
   Vec2 min{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};

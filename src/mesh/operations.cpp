@@ -8,6 +8,8 @@
 #include "geometry/amips.hpp"
 #include "geometry/bezier_analysis.hpp"
 #include "geometry/closest_point.hpp"
+#include "geometry/vec2.hpp"
+#include "mesh/invariants.hpp"
 
 namespace curvemesh::mesh {
 
@@ -20,8 +22,6 @@ double SectionCurve::turning(double ta, double tb) const {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-// Floating-point slack on the turning bound: the features stage measured the same turning.
-constexpr double kTurningSlack = 1e-9;
 
 // Orientation of (x, y, p) for a point p that is not (yet) a vertex; exact.
 int orientation_new(const TriMesh& m, int x, int y, const Vec2& p) {
@@ -59,24 +59,6 @@ double max_amips_of(const TriMesh& m, const std::vector<int>& triangles) {
     e = std::max(e, geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])));
   }
   return e;
-}
-
-bool secondary_edges_inside(const TriMesh& m, const Constraints& c, int v, const Vec2& p) {
-  if (m.tag(v).kind == VertexKind::free) return true;  // no tagged edge at all
-  for (int x : m.neighbours(v)) {
-    const EdgeFeature* f = m.feature(v, x);
-    if (f && f->kind == EdgeKind::secondary && !c.envelope.contains(p, m.point(x))) return false;
-  }
-  return true;
-}
-
-// Would moving v to p keep all its triangles counter-clockwise?
-bool star_valid_at(const TriMesh& m, int v, const Vec2& p) {
-  for (int t : m.triangles_of(v)) {
-    const auto& tri = m.triangle(t);
-    if (m.orientation_with(tri[0], tri[1], tri[2], v, p) <= 0) return false;
-  }
-  return true;
 }
 
 // The summed AMIPS energy of v's triangles with v at p (infinite if one is not positive in doubles).
@@ -134,8 +116,8 @@ bool try_curve_move(TriMesh& m, const Constraints& c, int v, const CurveNeighbou
   const SectionCurve& curve = c.sections[m.tag(v).section];
   const Vec2 p = curve.eval(t);
   if (!p.allFinite()) return false;
-  if (curve.turning(n.tx, t) > c.max_turning + kTurningSlack) return false;
-  if (curve.turning(t, n.ty) > c.max_turning + kTurningSlack) return false;
+  if (curve.turning(n.tx, t) > turning_limit(c)) return false;
+  if (curve.turning(t, n.ty) > turning_limit(c)) return false;
   if (!star_valid_at(m, v, p) || !secondary_edges_inside(m, c, v, p)) return false;
   m.set_position(v, p);
   VertexTag tag = m.tag(v);
@@ -297,7 +279,7 @@ bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double en
     if (g->kind == EdgeKind::primary) {
       if (!edge || edge->kind != EdgeKind::primary || edge->source != g->source) return false;
       const double tx = param_at(*g, from, x, x), tt = param_at(*edge, from, to, to);
-      if (c.sections[g->source].turning(tx, tt) > c.max_turning + kTurningSlack) return false;
+      if (c.sections[g->source].turning(tx, tt) > turning_limit(c)) return false;
       h = primary_edge(*g, x, tx, to, tt);
     }
     // Two tagged edges merge into one. A secondary edge only asks to stay inside the envelope
@@ -532,7 +514,7 @@ bool release_secondary_edge(TriMesh& m, const Constraints& c, int a, int b) {
       const double chord = (m.point(a) - m.point(b)).squaredNorm();
       if (!(chord > (m.point(a) - m.point(x)).squaredNorm() && chord > (m.point(x) - m.point(b)).squaredNorm())) continue;
       const Vec2 ab = m.point(b) - m.point(a), to_x = m.point(x) - m.point(a);
-      const double height = std::abs(ab.x() * to_x.y() - ab.y() * to_x.x()) / std::sqrt(chord);
+      const double height = std::abs(geometry::cross(ab, to_x)) / std::sqrt(chord);
       if (!(height <= 1e-9 * std::sqrt(chord))) continue;
       if (!c.envelope.contains(m.point(a), m.point(x)) || !c.envelope.contains(m.point(x), m.point(b))) continue;
       m.clear_feature(a, b);
@@ -559,15 +541,6 @@ bool release_secondary_edge(TriMesh& m, const Constraints& c, int a, int b) {
       m.set_tag(v, tag);
     }
   }
-  return true;
-}
-
-bool edge_satisfies_invariants(const TriMesh& m, const Constraints& c, int a, int b) {
-  const EdgeFeature* f = m.feature(a, b);
-  if (!f) return true;
-  if (f->kind == EdgeKind::secondary) return c.envelope.contains(m.point(a), m.point(b));
-  if (f->kind == EdgeKind::primary)
-    return c.sections[f->source].turning(f->t_lo, f->t_hi) <= c.max_turning + kTurningSlack;
   return true;
 }
 

@@ -10,6 +10,7 @@
 //  4. primary vertices move only along their curve, boundary vertices only along their side,
 //     fixed vertices never move and are never removed.
 #include "mesh/constraints.hpp"
+#include "mesh/invariants.hpp"  // the checks of the invariants below, edge_satisfies_invariants
 #include "mesh/tri_mesh.hpp"
 
 namespace curvemesh::mesh {
@@ -55,8 +56,5 @@ bool release_secondary_edge(TriMesh& mesh, const Constraints& constraints, int a
 // Gives a vertex with an exact (rational) position a double position: its nearest double, or,
 // if that inverts a triangle, a point slightly towards the centre of its star. Returns success.
 bool round_vertex(TriMesh& mesh, const Constraints& constraints, int v);
-
-// Invariants 2 and 3 for one tagged edge as the mesh stores it (used by tests and `check`).
-bool edge_satisfies_invariants(const TriMesh& mesh, const Constraints& constraints, int a, int b);
 
 }  // namespace curvemesh::mesh

@@ -1,0 +1,182 @@
+#pragma once
+// Internal to src/curve (never included from outside it): the state of one run of curve() and
+// the steps that work on it. Builder's member functions are defined across the folder, one idea
+// a file:
+//   curve.cpp            the entry point, the order of the steps, the statistics, compaction;
+//   split.cpp            step 1: splitting until every triangle has at most one primary edge;
+//   nodes.cpp            steps 2 and 3: the P3 nodes of edges and centres, certification,
+//                        straightening;
+//   smooth.cpp           step 4: smoothing of corners and centres, projection onto curves;
+//   local_operations.cpp step 4: swaps, collapses and splits on the curved mesh;
+//   fit.cpp              step 5: edges that could not follow their curve, the distances left.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
+#include <vector>
+
+#include "curve/curve.hpp"
+#include "geometry/p3_triangle.hpp"
+#include "mesh/invariants.hpp"
+
+namespace curvemesh::curve::detail {
+
+using mesh::EdgeKind;
+using mesh::TriMesh;
+
+// Whether (a, b) is a primary edge; how many of a triangle's edges are.
+bool is_primary(const TriMesh& m, int a, int b);
+int primary_edges_of(const TriMesh& m, const mesh::Triangle& tri);
+
+// Step 1 (split.cpp); returns the number of splits.
+int split_until_one_primary_edge(TriMesh& m, const mesh::Constraints& c);
+
+// Whether the edge can follow its curve: both ends lie on it at their recorded parameters.
+bool followable(const TriMesh& m, int a, int b);
+
+// Steps 2 to 5 on the linear mesh after step 1 (out.linear, compacted).
+class Builder {
+ public:
+  Builder(CurvedMesh& out, const mesh::Constraints& c, const Options& o, Stats& s)
+      : out_(out), c_(c), o_(o), s_(s) {}
+
+  // Steps 2 to 5 and the statistics; out.nodes, out.triangles and out.lines are filled.
+  void run();
+
+ private:
+  // Triangle t of the curved mesh is triangle slot t of out_.linear (compacted before curving;
+  // step 4's operations add slots and leave dead ones, which finish() drops from both).
+
+  // The node of vertex v (a corner).
+  Vec2& at(int v) { return out_.nodes[vertex_node_[v]]; }
+  const Vec2& at(int v) const { return out_.nodes[vertex_node_[v]]; }
+
+  geometry::P3Nodes nodes_of(int t) const {
+    geometry::P3Nodes p;
+    for (int i = 0; i < 10; ++i) p[i] = out_.nodes[out_.triangles[t][i]];
+    return p;
+  }
+  double energy(int t) const { return geometry::p3_max_amips(nodes_of(t)); }
+
+  // ----- curve.cpp ------------------------------------------------------------------------------
+  void finish();
+
+  // ----- nodes.cpp: steps 2 and 3 ---------------------------------------------------------------
+  void add_edge(int a, int b);
+  void place_straight(int lo, int hi);
+  void place_on_curve(int lo, int hi);
+  void straighten(int a, int b);
+  std::array<int, 10> corner_and_edge_nodes(const mesh::Triangle& tri) const;
+  std::pair<int, int> edge_nodes(int a, int b) const;
+  int curved_edge_of(const mesh::Triangle& tri) const;
+  geometry::P3Nodes element(const mesh::Triangle& tri) const;
+  static std::array<Vec2, 3> centre_candidates(const geometry::P3Nodes& p);
+  bool choose_centre(geometry::P3Nodes& p, int& choice, double& scaled) const;
+  double badness(int t) const;
+  void choose_centre_of(int t);
+  std::optional<double> certify(int t) const;
+  bool certify_all(const std::vector<int>& triangles);
+  // The nodes of some triangles, to put back when a move is refused.
+  using Snapshot = std::vector<std::pair<int, Vec2>>;
+  Snapshot snapshot(const std::vector<int>& triangles) const;
+  void restore(const Snapshot& saved);
+
+  // ----- smooth.cpp: step 4, smoothing ----------------------------------------------------------
+  void smooth();
+  std::vector<int> bad_triangles() const;
+  int smooth_pass();
+  int move_corner(int v);
+  void place_corner(int v, const Vec2& p);
+  // The two neighbours of primary vertex v along its section, and their parameters.
+  struct CurveNeighbours {
+    int x = -1, y = -1;
+    double tx = 0, ty = 0;
+  };
+  void place_on_curve_at(int v, const CurveNeighbours& n, double t);
+  bool curve_neighbours(int v, CurveNeighbours& n) const;
+  int smooth_curve_corner(int v);
+  int project(int v);
+  int smooth_corner(int v);
+  int smooth_centre(int t);
+
+  // The largest of `measure` (energy, badness) over v's triangles.
+  template <class Measure>
+  double star_worst(int v, const Measure& measure) const {
+    double worst = 0;
+    for (int t : out_.linear.triangles_of(v)) worst = std::max(worst, measure(t));
+    return worst;
+  }
+
+  // Where free corner v should go: compass search, from where it is and a first step of a quarter
+  // of its shortest edge, on the worst `measure` around it (its nodes placed by place_corner);
+  // positions that would turn a corner triangle over are out. Leaves every node as it was.
+  template <class Measure>
+  Vec2 search_corner(int v, const Measure& measure) {
+    const TriMesh& m = out_.linear;
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int w : m.neighbours(v)) shortest = std::min(shortest, (m.point(w) - m.point(v)).norm());
+    const Snapshot saved = snapshot(m.triangles_of(v));
+    return compass_search(at(v), 0.25 * shortest, [&](const Vec2& p) {
+      if (!mesh::star_valid_at(m, v, p) || !mesh::secondary_edges_inside(m, c_, v, p))
+        return std::numeric_limits<double>::infinity();
+      place_corner(v, p);
+      const double worst = star_worst(v, measure);
+      restore(saved);
+      return worst;
+    });
+  }
+
+  // Compass search: from x0 with the first step h, in 8 directions, halving h when none lowers
+  // `objective`; returns the best point found.
+  template <class Objective>
+  Vec2 compass_search(const Vec2& x0, double h, const Objective& objective) const {
+    Vec2 x = x0;
+    double best = objective(x0);
+    for (int halvings = 0; halvings < 12;) {
+      bool improved = false;
+      for (int d = 0; d < 8; ++d) {
+        const double angle = d * std::numbers::pi / 4;
+        const Vec2 y = x + h * Vec2(std::cos(angle), std::sin(angle));
+        const double e = objective(y);
+        if (e < best) best = e, x = y, improved = true;
+      }
+      if (!improved) h *= 0.5, ++halvings;
+    }
+    return x;
+  }
+
+  // ----- local_operations.cpp: step 4, the operations of §4.1 on the curved mesh ---------------
+  void improve();
+  int improve_triangle(int t);
+  template <class Operation>
+  bool try_operation(const std::vector<int>& before, const Operation& operation);
+  void settle_vertex(int v, const std::vector<int>& triangles);
+  bool place_triangle(int t);
+
+  // ----- fit.cpp: step 5 ------------------------------------------------------------------------
+  void fit(int a, int b);
+  bool on_fitted_edge(int v) const;
+  int fitted_edge_of(const mesh::Triangle& tri) const;
+  double distance_to_curve(int a, int b, const mesh::EdgeFeature& f, int first, int second) const;
+
+  CurvedMesh& out_;
+  const mesh::Constraints& c_;
+  const Options& o_;
+  Stats& s_;
+  // Where each vertex's node is in out_.nodes: the vertex's own index until step 4 adds vertices
+  // (finish() puts the vertices first again).
+  std::vector<int> vertex_node_;
+  std::unordered_map<std::uint64_t, int> first_node_;
+  std::unordered_map<std::uint64_t, bool> curved_;
+  std::vector<double> scaled_;  // per triangle: its scaled Jacobian, or −1 if not certified
+  std::unordered_set<std::uint64_t> fitted_;  // primary edges fitted (step 5), not on their curve
+  std::vector<std::uint64_t> new_edges_;      // edges made during the operation being tried
+};
+
+}  // namespace curvemesh::curve::detail

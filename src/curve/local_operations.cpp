@@ -1,0 +1,205 @@
+// Step 4 of curve(), the local operations of §4.1 on the curved mesh: for triangles still above
+// the stop energy after smoothing, a swap, a collapse or a split, each tried on the linear mesh
+// under its journal and kept only if the curved triangles it changes get better.
+#include "curve/builder.hpp"
+#include "mesh/operations.hpp"
+
+namespace curvemesh::curve::detail {
+
+namespace {
+
+// The union of two lists of ids, sorted, each once.
+std::vector<int> sorted_union(std::vector<int> a, const std::vector<int>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  std::sort(a.begin(), a.end());
+  a.erase(std::unique(a.begin(), a.end()), a.end());
+  return a;
+}
+
+}  // namespace
+
+// Passes over the triangles still above the stop energy after smoothing: for each, the swap
+// of one of its edges, else the collapse of one, else the split of one (longer edges first),
+// whichever first lowers the worst energy of the triangles it changes with every changed
+// triangle certified; then a smoothing pass. At most max_smoothing_passes passes.
+void Builder::improve() {
+  for (int pass = 0; pass < o_.max_smoothing_passes; ++pass) {
+    const std::vector<int> bad = bad_triangles();
+    if (bad.empty()) return;
+    int changed = 0;
+    for (int t : bad)
+      if (out_.linear.alive(t) && energy(t) > o_.stop_amips) changed += improve_triangle(t);
+    changed += smooth_pass();
+    if (changed == 0) return;
+  }
+}
+
+int Builder::improve_triangle(int t) {
+  TriMesh& m = out_.linear;
+  const mesh::Triangle tri = m.triangle(t);
+  std::array<std::array<int, 2>, 3> edges{{{tri[0], tri[1]}, {tri[1], tri[2]}, {tri[2], tri[0]}}};
+  std::stable_sort(edges.begin(), edges.end(), [&](const auto& x, const auto& y) {
+    return (at(x[0]) - at(x[1])).squaredNorm() > (at(y[0]) - at(y[1])).squaredNorm();
+  });
+  for (const auto& [a, b] : edges) {
+    if (m.feature(a, b)) continue;
+    if (try_operation(m.edge_triangles(a, b), [&]() -> std::optional<std::vector<int>> {
+          std::vector<int> changed = m.edge_triangles(a, b);
+          if (!mesh::swap_edge(m, a, b, std::numeric_limits<double>::infinity())) return std::nullopt;
+          return changed;
+        })) {
+      ++s_.curved_swaps;
+      return 1;
+    }
+  }
+  for (const auto& [a, b] : edges)
+    for (const auto& [from, to] : {std::pair{a, b}, std::pair{b, a}}) {
+      const std::vector<int> star = m.triangles_of(from);
+      if (try_operation(star, [&]() -> std::optional<std::vector<int>> {
+            std::vector<int> kept;
+            for (int u : star) {
+              const auto& corners = m.triangle(u);
+              if (std::find(corners.begin(), corners.end(), to) == corners.end()) kept.push_back(u);
+            }
+            if (!mesh::collapse_edge(m, c_, from, to, std::numeric_limits<double>::infinity())) return std::nullopt;
+            return kept;
+          })) {
+        ++s_.curved_collapses;
+        return 1;
+      }
+    }
+  // Splits: one edge, or two (the triangle's corner between them cut off: a thin corner
+  // between a curve and another feature needs both its sides shortened), the new vertices
+  // moved where their stars are best before the outcome is judged.
+  const auto split = [&](int a, int b) {
+    const int mid = mesh::split_edge(m, c_, a, b, std::numeric_limits<double>::infinity());
+    // A primary vertex left on the chord would leave its curve's edges straight.
+    return mid >= 0 && !(m.tag(mid).kind == mesh::VertexKind::primary && !m.tag(mid).on_curve) ? mid : -1;
+  };
+  for (const auto& [a, b] : edges) {
+    if (try_operation(m.edge_triangles(a, b), [&]() -> std::optional<std::vector<int>> {
+          const int mid = split(a, b);
+          if (mid < 0) return std::nullopt;
+          return m.triangles_of(mid);
+        })) {
+      ++s_.curved_splits;
+      return 1;
+    }
+  }
+  for (int i = 0; i < 3; ++i) {
+    // The corner tri[i] between edges (tri[i], tri[i+1]) and (tri[i+2], tri[i]).
+    const int a = tri[i], b = tri[(i + 1) % 3], c = tri[(i + 2) % 3];
+    const std::vector<int> before = sorted_union(m.edge_triangles(a, b), m.edge_triangles(c, a));
+    if (try_operation(before, [&]() -> std::optional<std::vector<int>> {
+          const int m1 = split(a, b);
+          const int m2 = m1 < 0 ? -1 : split(c, a);
+          if (m2 < 0) return std::nullopt;
+          return sorted_union(m.triangles_of(m1), m.triangles_of(m2));
+        })) {
+      s_.curved_splits += 2;
+      return 1;
+    }
+  }
+  return 0;
+}
+
+// Tries a local operation of the linear mesh on the curved mesh. `operation` changes
+// out_.linear (under its journal) and returns the triangles it changed or made, or nothing if
+// it refused. Those triangles get their P3 nodes (new edges on their curve where they can
+// follow it, centres chosen as in step 2) and new vertices settle; the operation is kept only
+// if none of them has two primary edges and, compared with `before` (the triangles it
+// replaces), fewer of them are uncertified (validity first: triangles flat to round-off leave
+// a mesh that cannot be written), or all are certified and their worst energy is lower.
+// Otherwise everything is put back.
+template <class Operation>
+bool Builder::try_operation(const std::vector<int>& before, const Operation& operation) {
+  TriMesh& m = out_.linear;
+  double worst_before = 0;
+  int invalid_before = 0;
+  std::vector<std::uint64_t> old_edges;
+  struct Saved {
+    int t;
+    std::array<int, 10> ids;
+    double scaled;
+  };
+  std::vector<Saved> saved;
+  for (int t : before) {
+    worst_before = std::max(worst_before, energy(t));
+    invalid_before += scaled_[t] <= 0;
+    saved.push_back({t, out_.triangles[t], scaled_[t]});
+    const auto& tri = m.triangle(t);
+    for (int i = 0; i < 3; ++i) old_edges.push_back(mesh::edge_key(tri[i], tri[(i + 1) % 3]));
+  }
+  const std::size_t nodes0 = out_.nodes.size(), vertices0 = vertex_node_.size(), slots0 = out_.triangles.size();
+  const int moves0 = s_.smoothing_moves;
+  new_edges_.clear();
+  m.open_journal();
+  const std::optional<std::vector<int>> after = operation();
+  bool ok = after.has_value();
+  if (ok) {
+    for (int v = static_cast<int>(vertices0); v < m.vertex_count(); ++v) {
+      vertex_node_.push_back(static_cast<int>(out_.nodes.size()));
+      out_.nodes.push_back(m.point(v));
+    }
+    out_.triangles.resize(m.triangle_slots());
+    scaled_.resize(m.triangle_slots(), -1.0);
+    for (int t : *after) ok = ok && place_triangle(t);
+    for (int v = static_cast<int>(vertices0); ok && v < m.vertex_count(); ++v) settle_vertex(v, *after);
+    if (ok) {
+      double worst_after = 0;
+      int invalid_after = 0;
+      std::vector<std::optional<double>> certified;
+      for (int t : *after) {
+        worst_after = std::max(worst_after, energy(t));
+        certified.push_back(certify(t));
+        invalid_after += !certified.back();
+      }
+      ok = invalid_after < invalid_before || (invalid_after == 0 && worst_after < worst_before);
+      if (ok)
+        for (std::size_t k = 0; k < after->size(); ++k) scaled_[(*after)[k]] = certified[k].value_or(-1.0);
+    }
+  }
+  if (!ok) {
+    m.rollback();
+    for (const auto key : new_edges_) first_node_.erase(key), curved_.erase(key);
+    out_.nodes.resize(nodes0);
+    vertex_node_.resize(vertices0);
+    out_.triangles.resize(slots0);
+    scaled_.resize(slots0);
+    for (const Saved& x : saved) out_.triangles[x.t] = x.ids, scaled_[x.t] = x.scaled;
+    s_.smoothing_moves = moves0;
+    new_edges_.clear();
+    return false;
+  }
+  m.commit();
+  new_edges_.clear();
+  // Edges the operation removed lose their nodes (a later operation may make them again).
+  for (const auto key : old_edges) {
+    const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
+    if (m.edge_triangles(a, b).empty()) first_node_.erase(key), curved_.erase(key), fitted_.erase(key);
+  }
+  return true;
+}
+
+// A vertex made by a split moves (move_corner), then the centres of `triangles` do.
+void Builder::settle_vertex(int v, const std::vector<int>& triangles) {
+  move_corner(v);
+  for (int t : triangles) smooth_centre(t);
+}
+
+// Gives triangle t (changed by an operation) its nodes: its edges' (made where new), a new
+// centre. False if it has two primary edges (step 1 gave every triangle at most one).
+bool Builder::place_triangle(int t) {
+  const TriMesh& m = out_.linear;
+  const mesh::Triangle tri = m.triangle(t);
+  if (primary_edges_of(m, tri) > 1) return false;
+  for (int i = 0; i < 3; ++i) add_edge(tri[i], tri[(i + 1) % 3]);
+  std::array<int, 10> ids = corner_and_edge_nodes(tri);
+  ids[9] = static_cast<int>(out_.nodes.size());
+  out_.nodes.push_back((at(tri[0]) + at(tri[1]) + at(tri[2])) / 3);
+  out_.triangles[t] = ids;
+  if (curved_edge_of(tri) >= 0) choose_centre_of(t);
+  return true;
+}
+
+}  // namespace curvemesh::curve::detail

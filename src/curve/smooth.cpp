@@ -1,0 +1,241 @@
+// Step 4 of curve(), smoothing: corners and centre nodes move where the worst energy around them
+// is lowest (free and secondary corners in the plane, corners on curves along them), each move
+// certified; primary vertices still off their curve are projected onto it.
+#include "curve/builder.hpp"
+#include "geometry/closest_point.hpp"
+
+namespace curvemesh::curve::detail {
+
+// Up to max_smoothing_passes passes over the triangles above stop_amips: the free and
+// secondary corners of each (they move in the plane, their edges stay straight, secondary
+// ones inside the ε-envelope), its corners on curves (they slide
+// along their curve, their curved edges follow) and its centre node move where the worst
+// energy around them is lowest, by compass search; a move is kept only when every
+// triangle it changes is certified and the worst energy among them went down.
+void Builder::smooth() {
+  for (int pass = 0; pass < o_.max_smoothing_passes; ++pass)
+    if (smooth_pass() == 0) return;
+}
+
+// The alive triangles above the stop energy, worst first.
+std::vector<int> Builder::bad_triangles() const {
+  std::vector<std::pair<double, int>> bad;
+  for (std::size_t t = 0; t < out_.triangles.size(); ++t)
+    if (out_.linear.alive(static_cast<int>(t)))
+      if (const double e = energy(static_cast<int>(t)); e > o_.stop_amips) bad.push_back({-e, static_cast<int>(t)});
+  std::sort(bad.begin(), bad.end());
+  std::vector<int> out;
+  for (const auto& [e, t] : bad) out.push_back(t);
+  return out;
+}
+
+// One smoothing pass; returns the number of moves kept.
+int Builder::smooth_pass() {
+  const std::vector<int> bad = bad_triangles();
+  if (bad.empty()) return 0;
+  std::vector<int> corners;
+  for (int t : bad)
+    for (int v : out_.linear.triangle(t)) corners.push_back(v);
+  std::sort(corners.begin(), corners.end());
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  int moved = 0;
+  for (int v : corners) moved += move_corner(v);
+  for (int t : bad) moved += smooth_centre(t);
+  s_.smoothing_moves += moved;
+  return moved;
+}
+
+// Corner v moves to where its star is best, as its kind allows: free vertices in the plane,
+// secondary ones in the plane while their secondary edges stay in the ε-envelope, primary ones
+// on their curve along it; others, and the ends of a fitted edge (its bend was fitted for where
+// they are), stay. Returns 1 if it moved.
+int Builder::move_corner(int v) {
+  const mesh::VertexTag& tag = out_.linear.tag(v);
+  if (on_fitted_edge(v)) return 0;
+  if (tag.kind == mesh::VertexKind::free || tag.kind == mesh::VertexKind::secondary) return smooth_corner(v);
+  if (tag.kind == mesh::VertexKind::primary && tag.on_curve) return smooth_curve_corner(v);
+  return 0;
+}
+
+// Places the nodes that depend on corner v's position (and, on a curve, on its parameter): v,
+// the inner nodes of its edges (curved ones on their curve, at thirds of their parameter
+// interval; straight ones at thirds), and the centres of its triangles (straight: the
+// centroid; curved: the candidate of lowest badness, certified later).
+void Builder::place_corner(int v, const Vec2& p) {
+  at(v) = p;
+  const TriMesh& m = out_.linear;
+  for (int t : m.triangles_of(v)) {
+    const auto& ids = out_.triangles[t];
+    const auto& tri = m.triangle(t);
+    for (int i = 0; i < 3; ++i) {
+      const int a = tri[i], b = tri[(i + 1) % 3];
+      if (a != v && b != v) continue;
+      if (curved_.at(mesh::edge_key(a, b))) {
+        place_on_curve(std::min(a, b), std::max(a, b));
+      } else {
+        out_.nodes[ids[3 + 2 * i]] = (2 * at(a) + at(b)) / 3;
+        out_.nodes[ids[4 + 2 * i]] = (at(a) + 2 * at(b)) / 3;
+      }
+    }
+    if (curved_edge_of(tri) < 0) {
+      out_.nodes[ids[9]] = (at(tri[0]) + at(tri[1]) + at(tri[2])) / 3;
+      continue;
+    }
+    choose_centre_of(t);
+  }
+}
+
+// A primary corner at parameter t of its curve: its tag and the parameters of its two edges
+// along the curve follow.
+void Builder::place_on_curve_at(int v, const CurveNeighbours& n, double t) {
+  TriMesh& m = out_.linear;
+  mesh::VertexTag tag = m.tag(v);
+  tag.t = t;
+  m.set_tag(v, tag);
+  for (int w : {n.x, n.y}) {
+    mesh::EdgeFeature f = *m.feature(v, w);
+    (v < w ? f.t_lo : f.t_hi) = t;
+    m.set_feature(v, w, f);
+  }
+  place_corner(v, c_.sections[tag.section].eval(t));
+}
+
+bool Builder::curve_neighbours(int v, CurveNeighbours& n) const {
+  const TriMesh& m = out_.linear;
+  const mesh::VertexTag& tag = m.tag(v);
+  int found = 0;
+  for (int t : m.triangles_of(v))
+    for (int w : m.triangle(t)) {
+      const mesh::EdgeFeature* f = w == v ? nullptr : m.feature(v, w);
+      if (!f || f->kind != EdgeKind::primary || f->source != tag.section || w == n.x || w == n.y) continue;
+      const double tw = w < v ? f->t_lo : f->t_hi;
+      if (found == 0) n.x = w, n.tx = tw;
+      else if (found == 1) n.y = w, n.ty = tw;
+      ++found;
+    }
+  return found == 2;
+}
+
+// A primary corner (on its curve, inside its section) slides along the curve between its two
+// curve neighbours; the curve's turning per edge no longer matters once the edges are curved
+// (§4.2), only the certificate does.
+int Builder::smooth_curve_corner(int v) {
+  TriMesh& m = out_.linear;
+  const mesh::VertexTag tag0 = m.tag(v);
+  CurveNeighbours n;
+  if (!curve_neighbours(v, n)) return 0;
+  const auto& star = m.triangles_of(v);
+  const auto energy_of = [&](int t) { return energy(t); };
+  const Snapshot saved = snapshot(star);
+  const mesh::EdgeFeature fx = *m.feature(v, n.x), fy = *m.feature(v, n.y);
+  const auto undo = [&] {
+    restore(saved);
+    m.set_tag(v, tag0);
+    m.set_feature(v, n.x, fx);
+    m.set_feature(v, n.y, fy);
+  };
+  const mesh::SectionCurve& curve = c_.sections[tag0.section];
+  const double lo = std::min(n.tx, n.ty), hi = std::max(n.tx, n.ty), margin = 1e-3 * (hi - lo);
+  const auto objective = [&](double t) {
+    if (!(t > lo + margin && t < hi - margin) || !mesh::star_valid_at(m, v, curve.eval(t)))
+      return std::numeric_limits<double>::infinity();
+    place_on_curve_at(v, n, t);
+    const double e = star_worst(v, energy_of);
+    undo();
+    return e;
+  };
+  const double before = star_worst(v, energy_of);
+  double t = tag0.t, best = before, h = 0.25 * std::min(t - lo, hi - t);
+  for (int halvings = 0; halvings < 12;) {
+    bool improved = false;
+    for (const double step : {h, -h})
+      if (const double e = objective(t + step); e < best) best = e, t += step, improved = true;
+    if (!improved) h *= 0.5, ++halvings;
+  }
+  if (t == tag0.t || !(best < before)) return 0;
+  place_on_curve_at(v, n, t);
+  if (!certify_all(star)) {
+    undo();
+    return 0;
+  }
+  m.set_position(v, at(v));
+  return 1;
+}
+
+// Moves primary vertex v, still off its curve, to its closest point on the curve (between its
+// two curve neighbours); its edges along the curve become curved where their other end is on
+// the curve too. Kept only if the corners' triangles stay counter-clockwise and every changed
+// triangle is certified.
+int Builder::project(int v) {
+  TriMesh& m = out_.linear;
+  const mesh::VertexTag tag0 = m.tag(v);
+  CurveNeighbours n;
+  if (!curve_neighbours(v, n)) return 0;
+  const mesh::SectionCurve& curve = c_.sections[tag0.section];
+  const double lo = std::min(n.tx, n.ty), hi = std::max(n.tx, n.ty), margin = 1e-3 * (hi - lo);
+  const geometry::ClosestPoint cp = geometry::closest_point(curve.piece, m.point(v));
+  const double t = std::clamp(curve.t0 + cp.t * (curve.t1 - curve.t0), lo + margin, hi - margin);
+  const Vec2 p = curve.eval(t);
+  if (!mesh::star_valid_at(m, v, p)) return 0;
+  const auto& star = m.triangles_of(v);
+  const Snapshot saved = snapshot(star);
+  const mesh::EdgeFeature fx = *m.feature(v, n.x), fy = *m.feature(v, n.y);
+  mesh::VertexTag tag = tag0;
+  tag.on_curve = true;
+  m.set_tag(v, tag);
+  for (int w : {n.x, n.y}) curved_[mesh::edge_key(v, w)] = followable(m, v, w);
+  place_on_curve_at(v, n, t);
+  if (!certify_all(star)) {
+    restore(saved);
+    m.set_tag(v, tag0);
+    m.set_feature(v, n.x, fx);
+    m.set_feature(v, n.y, fy);
+    for (int w : {n.x, n.y}) curved_[mesh::edge_key(v, w)] = false;
+    return 0;
+  }
+  m.set_position(v, p);
+  return 1;
+}
+
+int Builder::smooth_corner(int v) {
+  TriMesh& m = out_.linear;
+  const auto& star = m.triangles_of(v);
+  const auto energy_of = [&](int t) { return energy(t); };
+  const Snapshot saved = snapshot(star);  // everything the move can change
+  const Vec2 x0 = m.point(v);
+  const double before = star_worst(v, energy_of);
+  const Vec2 x = search_corner(v, energy_of);
+  if (x == x0) return 0;
+  place_corner(v, x);
+  if (!(star_worst(v, energy_of) < before) || !certify_all(star)) {
+    restore(saved);
+    return 0;
+  }
+  m.set_position(v, x);
+  return 1;
+}
+
+int Builder::smooth_centre(int t) {
+  auto& centre = out_.nodes[out_.triangles[t][9]];
+  const Vec2 x0 = centre;
+  const double before = energy(t);
+  geometry::P3Nodes q = nodes_of(t);
+  double size = 0;
+  for (int i = 0; i < 3; ++i) size = std::max(size, (q[i] - q[(i + 1) % 3]).norm());
+  const Vec2 x = compass_search(x0, 0.05 * size, [&](const Vec2& p) {
+    q[9] = p;
+    return geometry::p3_max_amips(q);
+  });
+  q[9] = x;
+  if (x == x0 || !(geometry::p3_max_amips(q) < before)) return 0;
+  centre = x;
+  const auto cert = certify(t);
+  if (!cert) {
+    centre = x0;
+    return 0;
+  }
+  scaled_[t] = *cert;
+  return 1;
+}
+
+}  // namespace curvemesh::curve::detail
