@@ -31,6 +31,7 @@
 #include <thread>
 #include <vector>
 
+#include "app/batch_status.hpp"
 #include "app/commands.hpp"
 #include "app/feature_options.hpp"
 #include "features/options.hpp"
@@ -77,27 +78,9 @@ class BatchError : public std::runtime_error {
   int code_;
 };
 
-enum class Status { ok, invalid_input, timeout, out_of_memory, crash, invalid_output, skipped };
-
-const char* status_name(Status s) {
-  switch (s) {
-    case Status::ok:
-      return "ok";
-    case Status::invalid_input:
-      return "invalid-input";
-    case Status::timeout:
-      return "timeout";
-    case Status::out_of_memory:
-      return "out-of-memory";
-    case Status::crash:
-      return "crash";
-    case Status::invalid_output:
-      return "invalid-output";
-    case Status::skipped:
-      return "skipped";
-  }
-  return "crash";
-}
+using batch::Status;
+using batch::status_name;
+using batch::succeeded;
 
 // ---------------------------------------------------------------------------------------------
 // Inputs
@@ -515,11 +498,11 @@ class Progress {
   void finished(const Json& line) {
     const std::string status = line["status"];
     ++done_;
-    if (status == "ok" || status == "skipped")
+    if (succeeded(status))
       ++ok_;
     else
       ++failed_;
-    if (status != "skipped") ++ran_;
+    if (status != status_name(Status::skipped)) ++ran_;
     if (!terminal_) {
       char head[96];
       std::snprintf(head, sizeof head, "[%zu/%zu] %-14s %8.2f s %7.0f MB  ", done_, total_, status.c_str(),
@@ -529,7 +512,7 @@ class Progress {
       return;
     }
     // On a terminal the failures stay readable above the progress line.
-    if (status != "ok" && status != "skipped")
+    if (!succeeded(status))
       std::cerr << "\r\33[K" << status << ": " << line["path"].get<std::string>() << "  "
                 << line["message"].get<std::string>() << "\n";
     draw();
@@ -883,7 +866,7 @@ int run_batch(const BatchArgs& args) {
         ++done;
         const std::string s = (*line)["status"];
         ++counts[s];
-        failed += s != "ok" && s != "skipped";
+        failed += !succeeded(s);
       }
     std::ostringstream summary;
     summary << "curvemesh batch: " << done;
@@ -893,7 +876,7 @@ int run_batch(const BatchArgs& args) {
     summary << ": ok " << counts["ok"] << ", skipped " << counts["skipped"] << ", failed " << failed;
     std::string sep = " (";
     for (const auto& [s, n] : counts)
-      if (s != "ok" && s != "skipped" && n > 0) {
+      if (!succeeded(s) && n > 0) {
         summary << sep << s << " " << n;
         sep = ", ";
       }
