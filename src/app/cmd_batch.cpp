@@ -31,6 +31,8 @@
 #include <thread>
 #include <vector>
 
+#include "app/batch_error.hpp"
+#include "app/batch_inputs.hpp"
 #include "app/batch_status.hpp"
 #include "app/commands.hpp"
 #include "app/feature_options.hpp"
@@ -68,150 +70,11 @@ struct BatchArgs {
   MeshForwarding mesh;
 };
 
-// What failed the batch as a whole (not one drawing), with the exit code to return.
-class BatchError : public std::runtime_error {
- public:
-  BatchError(int code, const std::string& message) : std::runtime_error(message), code_(code) {}
-  int code() const { return code_; }
-
- private:
-  int code_;
-};
-
+using batch::BatchError;
+using batch::Drawing;
 using batch::Status;
 using batch::status_name;
 using batch::succeeded;
-
-// ---------------------------------------------------------------------------------------------
-// Inputs
-
-struct Drawing {
-  std::string path;   // as given or found (relative stays relative): the report's key and order
-  fs::path relative;  // where its output goes under OUTDIR, before the extension becomes .msh
-  fs::path msh, stats;
-};
-
-bool has_extension(const fs::path& p, std::string_view ext) {
-  std::string e = p.extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
-  return e == ext;
-}
-
-// Every *.svg below `root`; outputs mirror the folders below it.
-void add_directory(const fs::path& root, std::vector<Drawing>& out) {
-  std::error_code ec;
-  fs::recursive_directory_iterator it(root, fs::directory_options::skip_permission_denied, ec);
-  for (; !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
-    std::error_code regular;
-    if (has_extension(it->path(), ".svg") && it->is_regular_file(regular))
-      out.push_back({it->path().lexically_normal().string(), it->path().lexically_relative(root), {}, {}});
-  }
-  if (ec)
-    throw BatchError(kInvalidInput,
-                     "curvemesh: " + root.string() + ": cannot read the folder (" + ec.message() + ")");
-}
-
-// One path per line, '#' starts a comment, relative paths are relative to the list's folder (so a
-// list travels with its drawings). Folders listed are searched like folders given; a listed file
-// that does not exist stays in: it fails as invalid-input and shows up in the report.
-void add_list(const fs::path& list, std::vector<Drawing>& out) {
-  std::ifstream in(list);
-  if (!in)
-    throw BatchError(kInvalidInput,
-                     "curvemesh: " + list.string() + ": cannot read the list (" + std::strerror(errno) + ")");
-  std::string line;
-  while (std::getline(in, line)) {
-    line = line.substr(0, line.find('#'));
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos) continue;
-    line = line.substr(first, line.find_last_not_of(" \t\r") - first + 1);
-    fs::path p(line);
-    if (p.is_relative()) p = list.parent_path() / p;
-    p = p.lexically_normal();
-    std::error_code ec;
-    if (fs::is_directory(p, ec))
-      add_directory(p, out);
-    else
-      out.push_back({p.string(), p.filename(), {}, {}});
-  }
-}
-
-std::vector<Drawing> expand_inputs(const std::vector<std::string>& inputs) {
-  std::vector<Drawing> out;
-  for (const std::string& input : inputs) {
-    const fs::path p = fs::path(input).lexically_normal();
-    std::error_code ec;
-    const fs::file_status st = fs::status(p, ec);
-    if (!fs::exists(st)) throw BatchError(kUsage, "curvemesh: " + input + ": no such file or folder");
-    if (fs::is_directory(st))
-      add_directory(p, out);
-    else if (has_extension(p, ".svg") || has_extension(p, ".poly"))
-      out.push_back({p.string(), p.filename(), {}, {}});
-    else
-      add_list(p, out);
-  }
-  // Sorted by path, one entry per file (the same file reached twice, by any spelling, is meshed
-  // once); the first spelling in sorted order names its output.
-  std::stable_sort(out.begin(), out.end(),
-                   [](const Drawing& a, const Drawing& b) { return a.path < b.path; });
-  std::vector<Drawing> unique;
-  std::set<std::string> seen;
-  for (Drawing& d : out) {
-    std::error_code ec;
-    fs::path key = fs::weakly_canonical(d.path, ec);
-    if (ec) key = fs::absolute(d.path).lexically_normal();
-    if (seen.insert(key.string()).second) unique.push_back(std::move(d));
-  }
-  return unique;
-}
-
-std::uint64_t fnv1a(std::string_view s) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
-
-// Output names. One folder's drawings never collide, but two inputs can (a.svg from two folders
-// given as files, x.svg beside x.poly): those get a suffix hashed from their own path, not from
-// their position or the order of the inputs. Names are assigned on the whole sorted list, before
-// sharding, so a resumed or sharded run finds the same files.
-void assign_outputs(std::vector<Drawing>& drawings, const fs::path& output_dir) {
-  const auto msh_name = [](fs::path p) {
-    return p.replace_extension(".msh").lexically_normal().generic_string();
-  };
-  std::map<std::string, int> uses;
-  for (const Drawing& d : drawings) ++uses[msh_name(d.relative)];
-  std::set<std::string> taken;
-  for (std::size_t i = 0; i < drawings.size(); ++i) {
-    Drawing& d = drawings[i];
-    std::string name = msh_name(d.relative);
-    if (uses[name] > 1) {
-      char suffix[24];
-      std::snprintf(suffix, sizeof suffix, "-%08llx",
-                    static_cast<unsigned long long>(fnv1a(d.path) & 0xffffffffull));
-      fs::path r = d.relative;
-      name = msh_name(r.replace_filename(r.stem().string() + suffix));
-    }
-    // A hashed name that meets another drawing's own name is practically impossible; the index
-    // keeps it deterministic all the same.
-    if (!taken.insert(name).second) {
-      name = fs::path(name).replace_extension().generic_string() + "-" + std::to_string(i) + ".msh";
-      taken.insert(name);
-    }
-    d.msh = output_dir / fs::path(name);
-    d.stats = fs::path(d.msh).replace_extension(".json");
-  }
-}
-
-std::optional<std::pair<std::size_t, std::size_t>> parse_shard(const std::string& s) {
-  std::size_t k = 0, n = 0;
-  char slash = 0, extra = 0;
-  if (std::sscanf(s.c_str(), "%zu %c %zu %c", &k, &slash, &n, &extra) != 3 || slash != '/')
-    return std::nullopt;
-  if (s.find_first_not_of("0123456789/ ") != std::string::npos || n < 1 || k < 1 || k > n)
-    return std::nullopt;
-  return std::make_pair(k, n);
-}
 
 // ---------------------------------------------------------------------------------------------
 // Report lines
@@ -827,20 +690,17 @@ std::vector<std::string> forwarded_arguments(const MeshForwarding& m) {
 
 int run_batch(const BatchArgs& args) {
   if (!feature_options_valid(args.mesh.features)) return kUsage;
-  const auto shard = parse_shard(args.shard);
+  const auto shard = batch::parse_shard(args.shard);
   if (!shard) {
     std::cerr << "curvemesh: --shard wants K/N with 1 <= K <= N, not '" << args.shard << "'\n";
     return kUsage;
   }
   try {
-    std::vector<Drawing> all = expand_inputs(args.inputs);
+    std::vector<Drawing> all = batch::expand_inputs(args.inputs);
     const fs::path output_dir = fs::path(args.output_dir);
-    assign_outputs(all, output_dir);
+    batch::assign_outputs(all, output_dir);
     const std::size_t total = all.size();
-    // Every N-th drawing of the whole sorted list, so the shards' reports add up to the whole.
-    std::vector<Drawing> mine;
-    for (std::size_t i = 0; i < all.size(); ++i)
-      if (i % shard->second == shard->first - 1) mine.push_back(std::move(all[i]));
+    std::vector<Drawing> mine = batch::shard_of(std::move(all), *shard);
     if (total == 0) std::cerr << "curvemesh: warning: no drawings in the inputs\n";
 
     std::error_code ec;
@@ -848,12 +708,8 @@ int run_batch(const BatchArgs& args) {
     if (ec)
       throw BatchError(kInvalidInput,
                        "curvemesh: " + output_dir.string() + ": cannot create (" + ec.message() + ")");
-    // Shards may share OUTDIR; by default each writes a report of its own.
-    fs::path report_path = args.report;
-    if (report_path.empty())
-      report_path = output_dir / (shard->second == 1 ? std::string("report.jsonl")
-                                                     : "report-" + std::to_string(shard->first) + "-of-" +
-                                                           std::to_string(shard->second) + ".jsonl");
+    const fs::path report_path =
+        args.report.empty() ? batch::default_report_path(output_dir, *shard) : fs::path(args.report);
 
     const BlockedSignals signals;
     Batch batch(args, std::move(mine), forwarded_arguments(args.mesh), signals);
@@ -872,7 +728,7 @@ int run_batch(const BatchArgs& args) {
     summary << "curvemesh batch: " << done;
     if (done < batch.lines().size()) summary << " of " << batch.lines().size();
     summary << " drawings";
-    if (shard->second > 1) summary << " (shard " << args.shard << " of " << total << ")";
+    if (shard->n > 1) summary << " (shard " << args.shard << " of " << total << ")";
     summary << ": ok " << counts["ok"] << ", skipped " << counts["skipped"] << ", failed " << failed;
     std::string sep = " (";
     for (const auto& [s, n] : counts)
