@@ -34,6 +34,7 @@
 #include "app/batch_child.hpp"
 #include "app/batch_error.hpp"
 #include "app/batch_inputs.hpp"
+#include "app/batch_report.hpp"
 #include "app/batch_status.hpp"
 #include "app/commands.hpp"
 #include "app/feature_options.hpp"
@@ -71,76 +72,22 @@ struct BatchArgs {
   MeshForwarding mesh;
 };
 
+using batch::batch_record;
 using batch::BatchError;
 using batch::Child;
 using batch::ChildSetup;
 using batch::classify;
 using batch::Drawing;
+using batch::finished_stats;
 using batch::Outcome;
 using batch::outcome_of;
+using batch::read_stats;
+using batch::report_line;
+using batch::skipped_line;
 using batch::start_child;
 using batch::Status;
 using batch::status_name;
 using batch::succeeded;
-
-// ---------------------------------------------------------------------------------------------
-// Report lines
-
-Json figure(const Json& j, const char* section, const char* key) {
-  if (j.contains(section) && j[section].is_object() && j[section].contains(key)) return j[section][key];
-  return nullptr;
-}
-
-// Rounded to 1/per_unit, as the nearest double (what a reader expects to see printed).
-double rounded(double x, double per_unit) {
-  return std::round(x * per_unit) / per_unit;
-}
-
-// One report line, every key always present: figures a drawing does not have (no mesh, or no
-// curved stage with --linear) are null.
-Json report_line(const Drawing& d, Status status, double seconds, double peak_mb, const Json& stats,
-                 const Json& check_invalid, const std::string& message) {
-  const bool curved = stats.contains("curve");
-  const bool meshed = status == Status::ok || status == Status::skipped || status == Status::invalid_output;
-  Json line;
-  line["path"] = d.path;
-  line["status"] = status_name(status);
-  line["seconds"] = rounded(seconds, 1000);
-  line["peak_mb"] = rounded(peak_mb, 10);
-  line["triangles"] = meshed ? figure(stats, "mesh", "triangles") : Json();
-  line["curved_triangles"] = meshed && curved ? figure(stats, "curve", "curved_triangles") : Json();
-  line["min_angle_deg"] = meshed ? figure(stats, "mesh", "min_angle_deg") : Json();
-  // The curved triangles' own energy when curved: that is the mesh written.
-  line["max_amips"] =
-      meshed ? (curved ? figure(stats, "curve", "max_amips") : figure(stats, "mesh", "max_amips")) : Json();
-  line["fitted_edges"] = meshed && curved ? figure(stats, "curve", "fitted_edges") : Json();
-  line["max_distance_rel"] = meshed && curved ? figure(stats, "curve", "max_distance_rel") : Json();
-  line["mean_fit_distance_rel"] = meshed && curved ? figure(stats, "curve", "mean_fit_distance_rel") : Json();
-  line["check_invalid"] = check_invalid;
-  line["message"] = message;
-  line["output"] = status == Status::ok || status == Status::skipped ? d.msh.string() : "";
-  return line;
-}
-
-// A drawing is finished when its mesh and statistics exist, are newer than the drawing, and the
-// statistics carry the batch's record for the same mesh options. The record is written only after
-// `check` certified the mesh, so a run killed between meshing and certifying is redone, and so is
-// a drawing meshed with other options (a linear mesh must not stand in for a curved one).
-std::optional<Json> finished_stats(const Drawing& d, const Json& mesh_arguments) {
-  std::error_code ec;
-  const auto input_time = fs::last_write_time(d.path, ec);
-  if (ec) return std::nullopt;
-  for (const fs::path& p : {d.msh, d.stats}) {
-    const auto t = fs::last_write_time(p, ec);
-    if (ec || !(t > input_time)) return std::nullopt;
-  }
-  std::ifstream in(d.stats);
-  Json stats = Json::parse(in, nullptr, false);
-  if (stats.is_discarded() || !stats.is_object() || !stats.contains("batch")) return std::nullopt;
-  const Json& record = stats["batch"];
-  if (!record.is_object() || record.value("mesh_arguments", Json()) != mesh_arguments) return std::nullopt;
-  return stats;
-}
 
 // ---------------------------------------------------------------------------------------------
 // Progress on stderr: one line rewritten in place on a terminal; one line per drawing otherwise
@@ -267,13 +214,10 @@ class Batch {
     std::vector<std::size_t> pending;
     for (std::size_t i = 0; i < drawings_.size(); ++i) {
       const Drawing& d = drawings_[i];
-      if (const auto stats = args_.force ? std::optional<Json>() : finished_stats(d, mesh_arguments_)) {
-        const Json& r = (*stats)["batch"];
-        finish(i, report_line(d, Status::skipped, r.value("seconds", 0.0), r.value("peak_mb", 0.0), *stats,
-                              r.value("check_invalid", Json()), ""));
-      } else {
+      if (const auto stats = args_.force ? std::optional<Json>() : finished_stats(d, mesh_arguments_))
+        finish(i, skipped_line(d, *stats));
+      else
         pending.push_back(i);
-      }
     }
     std::reverse(pending.begin(), pending.end());  // taken from the back, in sorted order
 
@@ -369,10 +313,7 @@ class Batch {
 
   void after_check(Job job, const Outcome& o) {
     const Drawing& d = drawings_[job.index];
-    std::ifstream in(d.stats);
-    Json stats = Json::parse(in, nullptr, false);
-    in.close();
-    if (stats.is_discarded() || !stats.is_object()) stats = Json::object();
+    Json stats = read_stats(d.stats);
     Json verdict = Json::parse(o.out, nullptr, false);
     const Json check_invalid =
         verdict.is_object() && verdict.contains("invalid") ? verdict["invalid"] : Json();
@@ -388,13 +329,8 @@ class Batch {
                     : "curvemesh check: " + message;
     }
     if (status == Status::ok) {
-      Json record;
-      record["seconds"] = rounded(job.mesh.seconds, 1000);
-      record["peak_mb"] = rounded(job.mesh.peak_mb, 10);
-      record["check_seconds"] = rounded(o.seconds, 1000);
-      record["check_invalid"] = check_invalid;
-      record["mesh_arguments"] = mesh_arguments_;
-      stats["batch"] = record;
+      stats["batch"] =
+          batch_record(job.mesh.seconds, job.mesh.peak_mb, o.seconds, check_invalid, mesh_arguments_);
       try {
         io::write_file_atomically(d.stats.string(), stats.dump(1) + "\n");
       } catch (const io::OutputError& e) {
