@@ -34,6 +34,7 @@
 #include "app/batch_child.hpp"
 #include "app/batch_error.hpp"
 #include "app/batch_inputs.hpp"
+#include "app/batch_progress.hpp"
 #include "app/batch_report.hpp"
 #include "app/batch_status.hpp"
 #include "app/commands.hpp"
@@ -81,6 +82,7 @@ using batch::Drawing;
 using batch::finished_stats;
 using batch::Outcome;
 using batch::outcome_of;
+using batch::Progress;
 using batch::read_stats;
 using batch::report_line;
 using batch::skipped_line;
@@ -88,73 +90,6 @@ using batch::start_child;
 using batch::Status;
 using batch::status_name;
 using batch::succeeded;
-
-// ---------------------------------------------------------------------------------------------
-// Progress on stderr: one line rewritten in place on a terminal; one line per drawing otherwise
-// (a log file should not fill with carriage returns).
-
-std::string clock_text(double s) {
-  char b[32];
-  const long t = std::lround(s);
-  if (t >= 3600)
-    std::snprintf(b, sizeof b, "%ldh%02ldm", t / 3600, t / 60 % 60);
-  else if (t >= 60)
-    std::snprintf(b, sizeof b, "%ldm%02lds", t / 60, t % 60);
-  else
-    std::snprintf(b, sizeof b, "%.1fs", s);
-  return b;
-}
-
-class Progress {
- public:
-  Progress(std::size_t total, bool terminal) : total_(total), terminal_(terminal), start_(Clock::now()) {}
-
-  void finished(const Json& line) {
-    const std::string status = line["status"];
-    ++done_;
-    if (succeeded(status))
-      ++ok_;
-    else
-      ++failed_;
-    if (status != status_name(Status::skipped)) ++ran_;
-    if (!terminal_) {
-      char head[96];
-      std::snprintf(head, sizeof head, "[%zu/%zu] %-14s %8.2f s %7.0f MB  ", done_, total_, status.c_str(),
-                    line["seconds"].get<double>(), line["peak_mb"].get<double>());
-      const std::string message = line["message"];
-      std::cerr << head << line["path"].get<std::string>() << (message.empty() ? "" : "  " + message) << "\n";
-      return;
-    }
-    // On a terminal the failures stay readable above the progress line.
-    if (!succeeded(status))
-      std::cerr << "\r\33[K" << status << ": " << line["path"].get<std::string>() << "  "
-                << line["message"].get<std::string>() << "\n";
-    draw();
-  }
-
-  void tick() {
-    if (terminal_ && Clock::now() - drawn_ > std::chrono::milliseconds(200)) draw();
-  }
-
-  void end() {
-    if (terminal_) std::cerr << "\n";
-  }
-
-  double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
-
- private:
-  void draw() {
-    drawn_ = Clock::now();
-    const double t = elapsed();
-    const std::string eta = done_ == total_ ? "0s" : ran_ ? clock_text(t / ran_ * (total_ - done_)) : "?";
-    std::cerr << "\r\33[K[" << done_ << "/" << total_ << "] ok " << ok_ << "  failed " << failed_
-              << "  elapsed " << clock_text(t) << "  ETA " << eta << std::flush;
-  }
-
-  std::size_t total_, done_ = 0, ok_ = 0, failed_ = 0, ran_ = 0;
-  bool terminal_;
-  Clock::time_point start_, drawn_;
-};
 
 // ---------------------------------------------------------------------------------------------
 // The run
@@ -238,8 +173,7 @@ class Batch {
     return interrupted;
   }
 
-  const std::vector<std::optional<Json>>& lines() const { return lines_; }
-  double elapsed() const { return progress_.elapsed(); }
+  const Progress& progress() const { return progress_; }
 
  private:
   void start_mesh(std::size_t i) {
@@ -455,30 +389,8 @@ int run_batch(const BatchArgs& args) {
     Batch batch(args, std::move(mine), forwarded_arguments(args.mesh), signals);
     const int interrupted = batch.run(report_path);
 
-    std::map<std::string, int> counts;
-    std::size_t done = 0, failed = 0;
-    for (const auto& line : batch.lines())
-      if (line) {
-        ++done;
-        const std::string s = (*line)["status"];
-        ++counts[s];
-        failed += !succeeded(s);
-      }
-    std::ostringstream summary;
-    summary << "curvemesh batch: " << done;
-    if (done < batch.lines().size()) summary << " of " << batch.lines().size();
-    summary << " drawings";
-    if (shard->n > 1) summary << " (shard " << args.shard << " of " << total << ")";
-    summary << ": ok " << counts["ok"] << ", skipped " << counts["skipped"] << ", failed " << failed;
-    std::string sep = " (";
-    for (const auto& [s, n] : counts)
-      if (!succeeded(s) && n > 0) {
-        summary << sep << s << " " << n;
-        sep = ", ";
-      }
-    if (sep == ", ") summary << ")";
-    summary << "; " << clock_text(batch.elapsed()) << "; report " << report_path.string();
-    std::cerr << summary.str() << "\n";
+    const Progress& progress = batch.progress();
+    std::cerr << progress.summary(shard->n > 1 ? args.shard : "", total, report_path.string()) << "\n";
     if (interrupted) {
       std::cerr << "curvemesh: interrupted; the report lists the drawings that finished\n";
       // Die of the same signal, as a shell expects of an interrupted program.
@@ -490,7 +402,7 @@ int run_batch(const BatchArgs& args) {
       ::raise(interrupted);
       return kInvalidInput;
     }
-    return failed ? kInvalidInput : kOk;
+    return progress.failed() ? kInvalidInput : kOk;
   } catch (const BatchError& e) {
     std::cerr << e.what() << "\n";
     return e.code();
