@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "app/batch_status.hpp"
 #include "app/commands.hpp"
 #include "io/output_file.hpp"
 
@@ -31,14 +32,7 @@ struct ReportArgs {
   std::string html;
 };
 
-// The statuses `curvemesh batch` writes, in the order they are listed; others sort after them.
-std::vector<std::string> status_order() {
-  return {"ok", "skipped", "invalid-input", "timeout", "out-of-memory", "crash", "invalid-output"};
-}
-
-bool succeeded(const std::string& status) {
-  return status == "ok" || status == "skipped";
-}
+using batch::succeeded;
 
 struct Entry {
   std::string path, status, message;
@@ -79,7 +73,7 @@ struct Cause {
 struct Summary {
   std::vector<Entry> entries;  // one per path, sorted by path
   std::size_t duplicates = 0, succeeded = 0;
-  std::vector<std::pair<std::string, std::size_t>> counts;  // by status, in status_order
+  std::vector<std::pair<std::string, std::size_t>> counts;  // by status, in batch::Status's order
   Distribution time, memory;                                // over the drawings that have a mesh
   std::vector<const Entry*> slowest;
   std::vector<Cause> causes;  // most drawings first
@@ -150,7 +144,8 @@ Summary summarize(const std::vector<std::string>& files) {
       memory.push_back(e.peak_mb);
     }
   }
-  for (const std::string& status : status_order())
+  // The statuses `curvemesh batch` writes, in the order they are listed; others sort after them.
+  for (const char* status : batch::kStatusNames)
     if (counts.count(status)) s.counts.emplace_back(status, counts[status]);
   for (const auto& [status, n] : counts)
     if (std::find(s.counts.begin(), s.counts.end(), std::make_pair(status, n)) == s.counts.end())

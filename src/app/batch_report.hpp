@@ -1,0 +1,34 @@
+#pragma once
+// The lines of a `curvemesh batch` report, one JSON object per drawing: its status and the figures
+// read from the statistics `curvemesh mesh --stats` wrote. And the batch's record in those
+// statistics, written once a mesh is certified, by which a later run skips a finished drawing.
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "app/batch_inputs.hpp"
+#include "app/batch_status.hpp"
+
+namespace curvemesh::app::batch {
+
+using Json = nlohmann::ordered_json;
+
+// One report line, every key always present: figures a drawing does not have (no mesh, or no
+// curved stage with --linear) are null.
+Json report_line(const Drawing& d, Status status, double seconds, double peak_mb, const Json& stats,
+                 const Json& check_invalid, const std::string& message);
+
+// The statistics at `path` as an object; an empty one when there is none to read.
+Json read_stats(const fs::path& path);
+
+// The batch's record of a certified mesh, to be stored in its statistics under "batch".
+Json batch_record(double mesh_seconds, double mesh_peak_mb, double check_seconds, const Json& check_invalid,
+                  const Json& mesh_arguments);
+
+// The statistics of a finished drawing (see batch_report.cpp), or nothing when it must be redone.
+std::optional<Json> finished_stats(const Drawing& d, const Json& mesh_arguments);
+
+// The report line of a finished drawing, from its statistics.
+Json skipped_line(const Drawing& d, const Json& stats);
+
+}  // namespace curvemesh::app::batch

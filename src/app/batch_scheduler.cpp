@@ -1,0 +1,236 @@
+// The run of `curvemesh batch`: the loop that keeps N children going, and what follows when each
+// one ends.
+#include "app/batch_scheduler.hpp"
+
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <system_error>
+#include <utility>
+
+#include "app/batch_error.hpp"
+#include "app/commands.hpp"
+#include "io/output_file.hpp"
+
+namespace curvemesh::app::batch {
+
+namespace {
+
+// A drawing's mesh and statistics, gone (the first error, if any, in `ec`).
+void remove_outputs(const Drawing& d, std::error_code& ec) {
+  fs::remove(d.msh, ec);
+  fs::remove(d.stats, ec);
+}
+
+}  // namespace
+
+Batch::Batch(const Settings& settings, std::vector<Drawing> drawings, std::vector<std::string> forwarded,
+             const BlockedSignals& signals)
+    : settings_(settings),
+      drawings_(std::move(drawings)),
+      forwarded_(std::move(forwarded)),
+      signals_(signals),
+      lines_(drawings_.size()),
+      progress_(drawings_.size(), ::isatty(STDERR_FILENO)) {
+  for (const std::string& a : forwarded_) mesh_arguments_.push_back(a);
+  setup_.mask = signals.old();
+  setup_.address_space =
+      settings.memory_limit_gb > 0 ? static_cast<rlim_t>(settings.memory_limit_gb * 1073741824.0) : 0;
+}
+
+int Batch::run(const fs::path& report_path) {
+  report_path_ = report_path;
+  std::error_code ec;
+  if (report_path.has_parent_path()) fs::create_directories(report_path.parent_path(), ec);
+  report_.open(report_path, std::ios::trunc);
+  if (!report_)
+    throw BatchError(kInvalidInput, "curvemesh: " + report_path.string() + ": cannot write the report");
+
+  std::vector<std::size_t> pending;
+  for (std::size_t i = 0; i < drawings_.size(); ++i) {
+    const Drawing& d = drawings_[i];
+    if (const auto stats = settings_.force ? std::optional<Json>() : finished_stats(d, mesh_arguments_))
+      finish(i, skipped_line(d, *stats));
+    else
+      pending.push_back(i);
+  }
+  std::reverse(pending.begin(), pending.end());  // taken from the back, in sorted order
+
+  int interrupted = 0;
+  while (!interrupted && (!pending.empty() || !running_.empty())) {
+    while (running_.size() < settings_.jobs && !pending.empty()) {
+      start_mesh(pending.back());
+      pending.pop_back();
+    }
+    reap();
+    enforce_time_limits();
+    interrupted = wait_for_news();
+    progress_.tick();
+  }
+  if (interrupted) kill_all();
+  progress_.end();
+  write_sorted_report();
+  return interrupted;
+}
+
+void Batch::start_mesh(std::size_t i) {
+  const Drawing& d = drawings_[i];
+  // Redoing a drawing starts from nothing: a failure must not leave an earlier run's mesh behind
+  // to be taken for this run's.
+  std::error_code ec;
+  remove_outputs(d, ec);
+  if (d.msh.has_parent_path()) fs::create_directories(d.msh.parent_path(), ec);
+  if (ec) {
+    finish(i, report_line(d, Status::crash, 0, 0, Json::object(), nullptr,
+                          "cannot create " + d.msh.parent_path().string() + ": " + ec.message()));
+    return;
+  }
+  std::vector<std::string> argv = {"curvemesh",    "mesh",    d.path,           "-o",
+                                   d.msh.string(), "--stats", d.stats.string(), "-q"};
+  argv.insert(argv.end(), forwarded_.begin(), forwarded_.end());
+  Job job;
+  job.index = i;
+  job.child = start_child(argv, setup_);
+  job.deadline = job.child.started + std::chrono::duration_cast<Clock::duration>(
+                                         std::chrono::duration<double>(settings_.timeout_s));
+  if (job.child.pid < 0) {
+    const Outcome o = outcome_of(job.child, 0, 0);
+    const auto [status, message] = classify(o, "mesh", settings_.timeout_s, settings_.memory_limit_gb);
+    finish(i, report_line(d, status, 0, 0, Json::object(), nullptr, message));
+    return;
+  }
+  running_.push_back(std::move(job));
+}
+
+// Collects every child that has ended, with its peak resident memory from the kernel.
+void Batch::reap() {
+  int status = 0;
+  rusage usage{};
+  pid_t pid;
+  while ((pid = ::wait4(-1, &status, WNOHANG, &usage)) > 0) {
+    const auto it =
+        std::find_if(running_.begin(), running_.end(), [&](const Job& j) { return j.child.pid == pid; });
+    if (it == running_.end()) continue;
+    Job job = std::move(*it);
+    running_.erase(it);
+    const double peak_mb = usage.ru_maxrss / 1024.0;  // kilobytes on Linux
+    const Outcome o = outcome_of(job.child, status, peak_mb);
+    if (job.checking)
+      after_check(std::move(job), o);
+    else
+      after_mesh(std::move(job), o);
+  }
+}
+
+void Batch::after_mesh(Job job, const Outcome& o) {
+  const Drawing& d = drawings_[job.index];
+  const auto [status, message] = classify(o, "mesh", settings_.timeout_s, settings_.memory_limit_gb);
+  if (status != Status::ok) {
+    finish(job.index, report_line(d, status, o.seconds, o.peak_mb, Json::object(), nullptr, message));
+    return;
+  }
+  // Certified by `check` in a child too: an uncertifiable mesh may be expensive or crash the
+  // checker, and the time limit covers both steps.
+  job.mesh = o;
+  job.checking = true;
+  job.child = start_child({"curvemesh", "check", d.msh.string(), "--json"}, setup_);
+  if (job.child.pid < 0) {
+    after_check(std::move(job), outcome_of(job.child, 0, 0));
+    return;
+  }
+  running_.push_back(std::move(job));
+}
+
+void Batch::after_check(Job job, const Outcome& o) {
+  const Drawing& d = drawings_[job.index];
+  Json stats = read_stats(d.stats);
+  Json verdict = Json::parse(o.out, nullptr, false);
+  const Json check_invalid = verdict.is_object() && verdict.contains("invalid") ? verdict["invalid"] : Json();
+  auto [status, message] = classify(o, "check", settings_.timeout_s, settings_.memory_limit_gb);
+  if (status == Status::ok && !(check_invalid.is_number() && check_invalid.get<long>() == 0)) {
+    status = Status::invalid_output;
+    message = "curvemesh check printed no verdict";
+  } else if (status == Status::invalid_input || status == Status::crash) {
+    // `check` refused the mesh (exit 1) or could not read it: either way it is not certified.
+    status = Status::invalid_output;
+    message = check_invalid.is_number() && check_invalid.get<long>() > 0
+                  ? "curvemesh check: " + check_invalid.dump() + " invalid elements"
+                  : "curvemesh check: " + message;
+  }
+  if (status == Status::ok) {
+    stats["batch"] =
+        batch_record(job.mesh.seconds, job.mesh.peak_mb, o.seconds, check_invalid, mesh_arguments_);
+    try {
+      io::write_file_atomically(d.stats.string(), stats.dump(1) + "\n");
+    } catch (const io::OutputError& e) {
+      status = Status::crash;
+      message = e.what();
+    }
+  }
+  if (status != Status::ok) {
+    // Only certified meshes stay in OUTDIR (as `mesh` writes nothing when it fails), and a
+    // resumed run must redo this drawing rather than skip it.
+    std::error_code ec;
+    remove_outputs(d, ec);
+  }
+  finish(job.index,
+         report_line(d, status, job.mesh.seconds, job.mesh.peak_mb, stats, check_invalid, message));
+}
+
+void Batch::enforce_time_limits() {
+  const auto now = Clock::now();
+  for (Job& j : running_)
+    if (!j.child.killed && now >= j.deadline) {
+      ::kill(-j.child.pid, SIGKILL);  // the whole group; the child is reaped as usual
+      j.child.killed = true;
+    }
+}
+
+// Sleeps until a child ends, the next deadline passes or 100 ms go by; returns the number of an
+// interrupting signal (Ctrl-C, SIGTERM, SIGHUP), or 0.
+int Batch::wait_for_news() {
+  if (running_.empty()) return 0;
+  auto wake = Clock::now() + std::chrono::milliseconds(100);
+  for (const Job& j : running_)
+    if (!j.child.killed) wake = std::min(wake, j.deadline);
+  const auto ns = std::max<long long>(
+      0, std::chrono::duration_cast<std::chrono::nanoseconds>(wake - Clock::now()).count());
+  const timespec timeout{static_cast<time_t>(ns / 1000000000), static_cast<long>(ns % 1000000000)};
+  siginfo_t info;
+  const int sig = ::sigtimedwait(&signals_.set(), &info, &timeout);
+  return sig > 0 && sig != SIGCHLD ? sig : 0;
+}
+
+void Batch::kill_all() {
+  for (Job& j : running_) ::kill(-j.child.pid, SIGKILL);
+  for (Job& j : running_) {
+    ::waitpid(j.child.pid, nullptr, 0);
+    std::error_code ec;
+    remove_outputs(drawings_[j.index], ec);
+  }
+  running_.clear();
+}
+
+void Batch::finish(std::size_t i, Json line) {
+  // Written as they come, so a run that dies still leaves a report; sorted at the end.
+  report_ << line.dump() << "\n" << std::flush;
+  progress_.finished(line);
+  lines_[i] = std::move(line);
+}
+
+void Batch::write_sorted_report() {
+  report_.close();
+  std::string text;
+  for (const auto& line : lines_)
+    if (line) text += line->dump() + "\n";
+  try {
+    io::write_file_atomically(report_path_.string(), text);
+  } catch (const io::OutputError& e) {
+    throw BatchError(kInvalidInput, std::string("curvemesh: ") + e.what());
+  }
+}
+
+}  // namespace curvemesh::app::batch
