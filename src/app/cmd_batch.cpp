@@ -115,6 +115,7 @@ Runner add_batch_command(CLI::App& app) {
   auto args = std::make_shared<BatchArgs>();
   CLI::App* cmd = app.add_subcommand(
       "batch",
+      "Mesh many drawings, each in a process of its own, resumable, with a JSON Lines report\n"
       "Mesh many drawings, each in a child process of its own (`curvemesh mesh`, then `curvemesh check "
       "--json` on the result), N at a time, so that a crash, a hang or running out of memory costs that "
       "drawing only. Outputs mirror the inputs under OUTDIR (X.msh and the statistics X.json). Finished "

@@ -173,6 +173,7 @@ Runner add_check_command(CLI::App& app) {
   auto args = std::make_shared<CheckArgs>();
   CLI::App* cmd = app.add_subcommand(
       "check",
+      "Certify every element of a Gmsh .msh file exactly (a positive Jacobian)\n"
       "Certify a 2D triangle mesh in a Gmsh .msh file (4.1 or 2.2, ASCII; linear, quadratic or cubic "
       "triangles, from any program): the Jacobian determinant of every element is decided positive "
       "on the whole element with exact rational arithmetic on the coordinates as written. Prints the "

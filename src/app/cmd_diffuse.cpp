@@ -68,6 +68,7 @@ Runner add_diffuse_command(CLI::App& app) {
   SolveOptions& o = args->solve;
   CLI::App* cmd = app.add_subcommand(
       "diffuse",
+      "Diffusion curves: each curve's side colours diffused into a PNG\n"
       "Diffusion curves (Orzan et al. 2008; paper §5.1, Fig. 12): mesh the drawing's box, cut the mesh open along "
       "its curves (every primary and secondary line that lies on an input curve), hold each side of every curve at "
       "that side's colour and solve the Laplace equation per colour channel (P2 elements on the cubic map, CHOLMOD; "

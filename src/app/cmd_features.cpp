@@ -59,6 +59,7 @@ Runner add_features_command(CLI::App& app) {
   auto args = std::make_shared<FeaturesArgs>();
   CLI::App* cmd = app.add_subcommand(
       "features",
+      "Read an SVG drawing into curves and points (with --processed, its features) as JSON\n"
       "Read an SVG drawing into a soup of cubic Bézier curves and isolated points, in the root element's "
       "user space (viewBox units, y down), and write it as JSON (and optionally as an SVG drawing). "
       "With --processed, also run feature processing (paper §4): primary sections, secondary segments.");

@@ -84,8 +84,9 @@ int run_mesh(const MeshArgs& args) {
 
 Runner add_mesh_command(CLI::App& app) {
   auto args = std::make_shared<MeshArgs>();
-  CLI::App* cmd = app.add_subcommand("mesh", "Mesh an SVG drawing: a curved (or linear) Gmsh .msh file");
-  cmd->footer(
+  CLI::App* cmd = app.add_subcommand(
+      "mesh",
+      "Mesh an SVG drawing: a curved (or linear) Gmsh .msh file\n"
       "Mesh an SVG drawing (or a Triangle .poly file: points and segments, all secondary): feature "
       "processing (paper §4), an exact constrained triangulation of the bounding box and every feature, "
       "quality optimization (§4.1), and curving (§4.2): cubic 10-node triangles whose edges follow the "

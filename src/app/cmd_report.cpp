@@ -453,6 +453,7 @@ Runner add_report_command(CLI::App& app) {
   auto args = std::make_shared<ReportArgs>();
   CLI::App* cmd = app.add_subcommand(
       "report",
+      "Summarize batch reports: success rate, time, memory, failures by cause\n"
       "Summarize the JSON Lines reports of `curvemesh batch` (several at once, e.g. one per shard): "
       "success rate (ok or skipped), drawings by status, median, p90, p99 and max of time and peak "
       "memory over the meshed drawings, the 10 slowest drawings, and the failures grouped by cause "

@@ -10,6 +10,7 @@ namespace curvemesh::app {
 Runner add_solve_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "solve",
+      "Mesh a drawing and solve a PDE on it: inflate, elastic or stokes\n"
       "Mesh a drawing and solve a PDE on it with quadratic (P2) elements on the cubic curved map (paper §5.1); "
       "--linear uses the straight map of the same mesh. Writes the solution as VTU (ParaView) and PNG and "
       "prints the time of each step.");

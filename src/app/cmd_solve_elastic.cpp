@@ -170,6 +170,7 @@ SubcommandRunner add_solve_elastic_command(CLI::App& solve) {
   auto args = std::make_shared<ElasticArgs>();
   CLI::App* cmd = solve.add_subcommand(
       "elastic",
+      "Hang the enclosed regions under gravity (Neo-Hookean elasticity)\n"
       "Hang the drawing's enclosed regions at their top and let gravity pull them down (paper §5.1, Figure 14): "
       "compressible Neo-Hookean elasticity in plane strain, sigma = mu (F - F^-T) + lambda ln(det F) F^-T, P2 "
       "displacement, Newton's method with the exact tangent (CHOLMOD) and a line search on the potential energy. "

@@ -64,6 +64,7 @@ SubcommandRunner add_solve_inflate_command(CLI::App& solve) {
   auto args = std::make_shared<InflateArgs>();
   CLI::App* cmd = solve.add_subcommand(
       "inflate",
+      "Inflate the enclosed regions into a surface (bi-Laplace)\n"
       "Inflate the drawing's enclosed regions into a 3D surface (paper §5.1, Repoussé with a constant load): "
       "the bi-Laplace equation, clamped (zero height and slope) at the curves, in Ciarlet-Raviart mixed form "
       "(P2 height and P2 -Δheight, a saddle-point system solved by UMFPACK).");

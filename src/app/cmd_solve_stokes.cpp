@@ -118,6 +118,7 @@ SubcommandRunner add_solve_stokes_command(CLI::App& solve) {
   auto args = std::make_shared<StokesArgs>();
   CLI::App* cmd = solve.add_subcommand(
       "stokes",
+      "Viscous flow through the drawing (Stokes, Taylor-Hood)\n"
       "Viscous (Stokes) flow through the drawing (paper §5.1): -v lap u + grad p = 0, div u = 0 (v: "
       "--viscosity) "
       "with Taylor-Hood elements (P2 velocity, P1 pressure; a saddle-point system solved by UMFPACK). The "

@@ -76,6 +76,7 @@ Runner add_verify_command(CLI::App& app) {
   cmd->require_subcommand(1);
   CLI::App* conv = cmd->add_subcommand(
       "convergence",
+      "P2 on the cubic against the straight map: errors and rates on a disk\n"
       "Solve -Δu = f on the unit disk (an SVG circle drawn as 32 arcs) with a known smooth solution, meshed "
       "at shrinking edge lengths, with quadratic (P2) elements on the cubic curved map and on the straight "
       "map of the same meshes; print the L2 and H1 errors and their rates (expected: L2 about 3 curved, "

@@ -3,13 +3,34 @@
 #include <exception>
 #include <iostream>
 #include <map>
+#include <memory>
+#include <sstream>
 #include <string>
 
 #include "app/commands.hpp"
 
+namespace {
+
+// A command's description is one line, then a paragraph: `curvemesh --help` lists the commands
+// with their line, `curvemesh COMMAND --help` shows the whole description.
+class CommandListFormatter : public CLI::Formatter {
+ public:
+  std::string make_subcommand(const CLI::App* sub) const override {
+    const std::string& description = sub->get_description();
+    std::stringstream out;
+    CLI::detail::format_help(out, sub->get_display_name(true), description.substr(0, description.find('\n')),
+                             column_width_);
+    return out.str();
+  }
+};
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace curvemesh::app;
   CLI::App app{"curvemesh: coarse, curved, analysis-ready triangle meshes from SVG drawings"};
+  app.formatter(std::make_shared<CommandListFormatter>());
+  app.footer("`curvemesh COMMAND --help` explains a command and every one of its options.");
   app.require_subcommand(1);
   app.set_version_flag("--version", "curvemesh 0.1.0");
 
