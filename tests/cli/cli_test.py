@@ -103,6 +103,29 @@ with tempfile.TemporaryDirectory() as tmp:
     r = run("features", ex, "-o", os.path.join(tmp, "no-such-dir", "x.json"))
     check("unwritable output exit 1", r.returncode == 1 and "no-such-dir" in r.stderr, r.stderr)
 
+    # --eps-m is one parameter: it also decides which paths the reader turns into points. A path
+    # 1e-4 of d long is a curve at the default (1e-8) and a point at 1e-3.
+    tiny = os.path.join(tmp, "tiny.svg")
+    with open(tiny, "w") as f:
+        f.write(SVG.format('<path d="M 0 0 L 100 100"/><path d="M 50 20 L 50.01 20.01"/>'))
+    counts = {}
+    for eps in ("1e-8", "1e-3"):
+        r = run("features", tiny, "-o", a, "--eps-m", eps)
+        data = json.load(open(a)) if r.returncode == 0 else {"curves": [], "points": []}
+        counts[eps] = (len(data["curves"]), len(data["points"]))
+    check("--eps-m reaches the reader", counts == {"1e-8": (2, 0), "1e-3": (1, 1)}, counts)
+    r = run("features", tiny, "-o", b, "--degenerate-tolerance", "1e-3")
+    check("--degenerate-tolerance is --eps-m", r.returncode == 0 and open(a, "rb").read() == open(b, "rb").read(), r.stderr)
+
+    # The command list: one line per command; the paragraph under the command's own help.
+    h = run("--help")
+    listed = [line.split()[0] for line in h.stdout.splitlines() if line.startswith("  ") and not line.strip().startswith("-")]
+    check("--help lists every command once", listed == ["features", "mesh", "check", "batch", "report", "verify", "solve", "diffuse"],
+          h.stdout)
+    check("--help lines are short", all(len(line) <= 130 for line in h.stdout.splitlines()), h.stdout)
+    h = run("mesh", "--help")
+    check("mesh --help has the paragraph", "certified to have a positive Jacobian" in h.stdout, h.stdout[:500])
+
     # Usage errors: exit 2; help: exit 0 and explains the options.
     check("no subcommand exit 2", run().returncode == 2)
     check("unknown option exit 2", run("features", ex, "-o", a, "--frobnicate").returncode == 2)

@@ -154,6 +154,20 @@ if r.returncode == 0:
     xs, ys = [p[0] for p in xy], [p[1] for p in xy]
     check("empty drawing: the mesh covers the viewBox", min(xs) <= 10 and max(xs) >= 310 and min(ys) <= 20 and max(ys) >= 220,
           (min(xs), max(xs), min(ys), max(ys)))
+# Success says what was written in one line on stdout; -q says nothing; the parameters are
+# checked together before anything runs.
+example = os.path.join(examples, "overlapping-shapes.svg")
+out = os.path.join(tmp.name, "said.msh")
+r = subprocess.run([binary, "mesh", example, "-o", out], capture_output=True, text=True, timeout=120)
+said = r.stdout.strip().splitlines()
+check("mesh prints one line", r.returncode == 0 and len(said) == 1 and out in said[0] and "triangles" in said[0]
+      and "max AMIPS" in said[0] and "scaled Jacobian" in said[0] and r.stderr == "", (r.stdout, r.stderr))
+r = subprocess.run([binary, "mesh", example, "-o", out, "--linear", "-q"], capture_output=True, text=True, timeout=120)
+check("mesh -q prints nothing", r.returncode == 0 and r.stdout == "" and r.stderr == "", (r.stdout, r.stderr))
+r = subprocess.run([binary, "mesh", example, "-o", os.path.join(tmp.name, "never.msh"), "--mu", "0.01", "--epsilon", "0.005"],
+                   capture_output=True, text=True, timeout=60)
+check("epsilon below mu: exit 2 naming both", r.returncode == 2 and "--epsilon" in r.stderr and "--mu" in r.stderr
+      and not os.path.exists(os.path.join(tmp.name, "never.msh")), r.stderr)
 r = subprocess.run([binary, "mesh", "--help"], capture_output=True, text=True)
 check("mesh --help", r.returncode == 0 and "--linear" in r.stdout and "--msh-version" in r.stdout, r.stdout[-300:])
 
