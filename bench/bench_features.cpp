@@ -16,7 +16,7 @@ void BM_FeatureProcessing(benchmark::State& state) {
   const auto source = pipeline::Source::curves(random_soup(static_cast<int>(state.range(0)), 7));
   std::size_t sections = 0;
   for (auto _ : state) {
-    const auto f = pipeline::run(source, {}, {pipeline::Stage::features}).features;
+    const auto f = pipeline::run(source, {}, pipeline::Stage::features).features;
     sections = f.sections.size();
     benchmark::DoNotOptimize(sections);
   }

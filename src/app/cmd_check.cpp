@@ -118,7 +118,7 @@ int run_check(const CheckArgs& args) {
   if (!args.svg.empty()) {
     svg::FeatureSoup soup;
     try {
-      soup = pipeline::run(pipeline::Source::file(args.svg), {}, {pipeline::Stage::read}).soup;
+      soup = pipeline::run(pipeline::Source::file(args.svg), {}, pipeline::Stage::read).soup;
     } catch (const Error& e) {
       std::cerr << "curvemesh: " << e.what() << "\n";
       return exit_code(e);

@@ -6,9 +6,11 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "app/commands.hpp"
 #include "app/mesh_options.hpp"
+#include "app/progress.hpp"
 #include "io/output_file.hpp"
 #include "pipeline/output.hpp"
 #include "pipeline/pipeline.hpp"
@@ -58,6 +60,11 @@ int run_mesh(const MeshArgs& args) {
 
   pipeline::Result r;
   try {
+    std::optional<ProgressDisplay> display;
+    if (!args.quiet) {
+      display.emplace(args.input);
+      run.progress = [&](const pipeline::Progress& p) { (*display)(p); };
+    }
     r = pipeline::run(pipeline::Source::file(args.input), args.parameters, run);
   } catch (const Error& e) {
     std::cerr << "curvemesh: " << e.what()
@@ -114,7 +121,10 @@ Runner add_mesh_command(CLI::App& app) {
   add_mesh_options(*cmd, args->parameters, args->msh_version);
   cmd->add_flag("-v,--verbose", args->verbose,
                 "report each optimization pass on stderr (triangles, min angle, max AMIPS)");
-  cmd->add_flag("-q,--quiet", args->quiet, "print nothing on success");
+  cmd->add_flag(
+      "-q,--quiet", args->quiet,
+      "print nothing on success, and no progress (a run longer than about 2 s otherwise says on stderr "
+      "where it is: stage, pass, triangles, worst AMIPS energy)");
   return [args] { return run_mesh(*args); };
 }
 

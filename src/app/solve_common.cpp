@@ -5,6 +5,7 @@
 
 #include "app/commands.hpp"
 #include "app/mesh_options.hpp"
+#include "app/progress.hpp"
 #include "io/output_file.hpp"
 #include "pipeline/output.hpp"
 
@@ -38,6 +39,8 @@ std::optional<fem::MeshedDrawing> mesh_for_solving(const SolveOptions& o, const 
   pipeline::RunOptions run;
   run.warn = [&](const std::string& w) { std::cerr << "curvemesh: " << o.input << ": warning: " << w << "\n"; };
   try {
+    ProgressDisplay display(o.input);
+    run.progress = [&](const pipeline::Progress& p) { display(p); };
     return pipeline::meshed_drawing(pipeline::run(pipeline::Source::file(o.input), curved, run));
   } catch (const Error& e) {
     std::cerr << "curvemesh: " << e.what() << "; nothing " << done << "\n";

@@ -29,6 +29,7 @@
 //     recorded.
 // High-order nodes are shared: one per edge position, one centre per triangle.
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "geometry/vec2.hpp"
@@ -46,6 +47,9 @@ struct Options {
   // pipeline::Parameters.
   double stop_amips = 0;
   int max_smoothing_passes = 0;
+  // Called at the start of each smoothing pass of step 4 (also those between the operations)
+  // with the number of triangles above stop_amips and the worst energy among them.
+  std::function<void(int above, double max_amips)> on_pass;
 };
 
 struct Stats {

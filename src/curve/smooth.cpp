@@ -33,6 +33,7 @@ std::vector<int> Builder::bad_triangles() const {
 int Builder::smooth_pass() {
   const std::vector<int> bad = bad_triangles();
   if (bad.empty()) return 0;
+  if (o_.on_pass) o_.on_pass(static_cast<int>(bad.size()), energy(bad.front()));
   std::vector<int> corners;
   for (int t : bad)
     for (int v : out_.linear.triangle(t)) corners.push_back(v);

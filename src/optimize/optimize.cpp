@@ -235,6 +235,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
     if (o.log)
       *o.log << "optimize: iteration " << s.iterations + 1 << ": " << q.triangles << " triangles, min angle "
              << q.min_angle_deg << ", max AMIPS " << q.max_amips << ", " << changes << " splits and collapses" << "\n";
+    if (o.on_iteration) o.on_iteration(s.iterations + 1, q.triangles, q.max_amips);
     const bool good = q.min_angle_deg >= o.stop_min_angle_deg || q.max_amips <= o.stop_max_amips;
     // The stop rule of §4.1 applies once the sizes are met: little is left to split or collapse
     // (2 % of the triangles), or what is left no longer shrinks by a fifth per pass (the churn

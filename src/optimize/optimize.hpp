@@ -2,6 +2,7 @@
 // §4.1 second half: quality improvement of the linear mesh by TetWild's loop in 2D — split long
 // edges, collapse short ones, swap, smooth, project feature vertices onto their curves — under
 // the invariants of mesh/operations.hpp, with adaptive sizing where quality stalls.
+#include <functional>
 #include <ostream>
 #include <string>
 
@@ -24,6 +25,8 @@ struct Options {
   // Smoothing rounds, after each pass, on the vertices of the triangles still above stop_max_amips.
   int extra_smoothing_rounds = 10;
   std::ostream* log = nullptr;           // one line per iteration when set (--verbose)
+  // Called after each iteration with its number (from 1), the triangles and the worst AMIPS energy.
+  std::function<void(int iteration, int triangles, double max_amips)> on_iteration;
 };
 
 struct Quality {

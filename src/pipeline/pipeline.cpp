@@ -130,8 +130,12 @@ Result run(const Source& source, const Parameters& parameters, const RunOptions&
     r.warnings.push_back(w);
     if (options.warn) options.warn(w);
   };
+  const auto report = [&](Stage stage, int pass = 0, int triangles = 0, double max_amips = 0) {
+    if (options.progress) options.progress({stage, pass, triangles, max_amips});
+  };
   stats["input"] = source.name;
   auto t = Clock::now();
+  report(Stage::read);
 
   // Read, and (unless stopping there) find the features.
   try {
@@ -155,6 +159,7 @@ Result run(const Source& source, const Parameters& parameters, const RunOptions&
       stats["seconds"]["read"] = seconds_since(t);
       r.resolved = resolve(parameters, features::drawing_box(r.soup).diagonal());
       if (last == Stage::read) return r;
+      report(Stage::features);
       t = Clock::now();
       r.features = features::process(r.soup, r.resolved.features);
       stats["seconds"]["features"] = seconds_since(t);
@@ -174,6 +179,7 @@ Result run(const Source& source, const Parameters& parameters, const RunOptions&
   if (f.sections.empty() && f.segments.empty() && f.points.empty())
     warn("nothing is drawn; meshing the canvas alone");
 
+  report(Stage::triangulate);
   t = Clock::now();
   triangulate::Result tri = triangulate::triangulate(f, r.resolved.triangulate);
   stats["seconds"]["triangulate"] = seconds_since(t);
@@ -188,8 +194,13 @@ Result run(const Source& source, const Parameters& parameters, const RunOptions&
 
   if (last != Stage::triangulate) {
     t = Clock::now();
+    report(Stage::optimize, 0, tri.stats.triangles);
     optimize::Options o = r.resolved.optimize;
     o.log = options.log;
+    if (options.progress)
+      o.on_iteration = [&](int iteration, int triangles, double max_amips) {
+        report(Stage::optimize, iteration, triangles, max_amips);
+      };
     r.optimize_stats = optimize::optimize(r.linear, r.constraints, o);
     stats["seconds"]["optimize"] = seconds_since(t);
     stats["optimize"] = optimize_json(r.optimize_stats);
@@ -211,7 +222,12 @@ Result run(const Source& source, const Parameters& parameters, const RunOptions&
 
   t = Clock::now();
   curve::Stats& s = r.curve_stats;
-  r.curved = curve::curve(std::move(r.linear), r.constraints, r.resolved.curve, &s);
+  report(Stage::curve, 0, r.quality.triangles, r.quality.max_amips);
+  curve::Options c = r.resolved.curve;
+  int pass = 0;
+  if (options.progress)
+    c.on_pass = [&](int above, double max_amips) { report(Stage::curve, ++pass, above, max_amips); };
+  r.curved = curve::curve(std::move(r.linear), r.constraints, c, &s);
   r.linear = mesh::TriMesh();
   stats["seconds"]["curve"] = seconds_since(t);
   stats["curve"] = curve_json(s, r.resolved.d);

@@ -41,12 +41,26 @@ struct Source {
   static Source curves(svg::FeatureSoup soup, std::string name = "<curves>");
 };
 
+// Where a run is: a stage starting (pass 0), or one pass of the optimization (triangles, worst
+// AMIPS energy) or of curving's step 4 (the triangles still above its stop energy, the worst).
+struct Progress {
+  Stage stage = Stage::read;
+  int pass = 0;
+  int triangles = 0;     // optimize: triangles of the mesh; curve: triangles above the stop energy
+  double max_amips = 0;  // the worst energy so far (0 while there is no mesh)
+};
+
 struct RunOptions {
+  RunOptions() = default;
+  RunOptions(Stage stop_after)
+      : stop_after(stop_after) {}  // NOLINT: run(source, parameters, Stage::features)
   // The last stage to run; past `optimize` only when the parameters are not linear.
   Stage stop_after = Stage::curve;
   std::ostream* log = nullptr;  // one line per optimization pass when set
   // Called with each warning as it arises (they are in Result::warnings too).
   std::function<void(const std::string&)> warn;
+  // Called as the run goes (for progress displays); never changes what the run makes.
+  std::function<void(const Progress&)> progress;
 };
 
 struct Result {

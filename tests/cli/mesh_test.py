@@ -168,6 +168,36 @@ r = subprocess.run([binary, "mesh", example, "-o", os.path.join(tmp.name, "never
                    capture_output=True, text=True, timeout=60)
 check("epsilon below mu: exit 2 naming both", r.returncode == 2 and "--epsilon" in r.stderr and "--mu" in r.stderr
       and not os.path.exists(os.path.join(tmp.name, "never.msh")), r.stderr)
+# Progress: a run longer than about 2 s says where it is on stderr, plain lines when stderr is
+# not a terminal, one line redrawn in place (and cleared) when it is; -q silences it.
+fine = ["mesh", example, "-o", out, "--linear", "-l", "0.004"]
+r = subprocess.run([binary, *fine], capture_output=True, text=True, timeout=300)
+lines = r.stderr.splitlines()
+passes = [l for l in lines if l.startswith(f"curvemesh: {example}: optimize pass ")]
+check("progress: plain lines with stage, pass, triangles, worst energy, time",
+      r.returncode == 0 and len(passes) >= 1 and all("triangles" in l and "max AMIPS" in l and l.endswith(" s)") for l in passes)
+      and len(lines) == len([l for l in lines if l.startswith(f"curvemesh: {example}: ")]), r.stderr[-800:])
+r = subprocess.run([binary, *fine, "-q"], capture_output=True, text=True, timeout=300)
+check("progress: -q silences it", r.returncode == 0 and r.stderr == "" and r.stdout == "", r.stderr[-300:])
+import pty  # noqa: E402
+primary, secondary = pty.openpty()
+proc = subprocess.Popen([binary, *fine], stdout=subprocess.DEVNULL, stderr=secondary)
+os.close(secondary)
+seen = b""
+while True:
+    try:
+        chunk = os.read(primary, 4096)
+    except OSError:
+        break
+    if not chunk:
+        break
+    seen += chunk
+proc.wait(timeout=300)
+os.close(primary)
+text = seen.decode(errors="replace")
+check("progress on a terminal: one line redrawn in place, cleared at the end",
+      proc.returncode == 0 and "\r\x1b[K" in text and "optimize pass" in text and "\n" not in text.strip("\r\x1b[K")
+      and text.endswith("\r\x1b[K"), repr(text[-300:]))
 r = subprocess.run([binary, "mesh", "--help"], capture_output=True, text=True)
 check("mesh --help", r.returncode == 0 and "--linear" in r.stdout and "--msh-version" in r.stdout, r.stdout[-300:])
 

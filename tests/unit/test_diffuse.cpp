@@ -18,7 +18,7 @@ namespace {
 std::string document(const std::string& body) { return "<svg xmlns=\"http://www.w3.org/2000/svg\">" + body + "</svg>"; }
 
 svg::FeatureSoup soup_of(const std::string& body) {
-  return pipeline::run(pipeline::Source::svg(document(body), "test.svg"), {}, {pipeline::Stage::read}).soup;
+  return pipeline::run(pipeline::Source::svg(document(body), "test.svg"), {}, pipeline::Stage::read).soup;
 }
 
 fem::MeshedDrawing mesh_of(const std::string& body, const pipeline::Parameters& parameters = {}) {

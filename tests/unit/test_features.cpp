@@ -28,15 +28,15 @@ svg::FeatureSoup soup_of(const std::vector<CubicBezier>& curves) {
 // The features stage through the pipeline: read (with the paper's ε_m) and processed with the
 // paper's parameters, or `p`.
 features::Features process(const svg::FeatureSoup& soup, const pipeline::Parameters& p = {}) {
-  return pipeline::run(pipeline::Source::curves(soup), p, {pipeline::Stage::features}).features;
+  return pipeline::run(pipeline::Source::curves(soup), p, pipeline::Stage::features).features;
 }
 
 svg::FeatureSoup read_text(const std::string& text) {
-  return pipeline::run(pipeline::Source::svg(text), {}, {pipeline::Stage::read}).soup;
+  return pipeline::run(pipeline::Source::svg(text), {}, pipeline::Stage::read).soup;
 }
 
 svg::FeatureSoup read_file(const std::string& path) {
-  return pipeline::run(pipeline::Source::file(path), {}, {pipeline::Stage::read}).soup;
+  return pipeline::run(pipeline::Source::file(path), {}, pipeline::Stage::read).soup;
 }
 
 double point_segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {

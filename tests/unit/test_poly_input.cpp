@@ -28,7 +28,7 @@ TEST(PolyInput, SquareWithDiagonalZeroBased) {
   const auto r = pipeline::run(pipeline::Source::file(write_temp(dir, "square0",
                                                                  "# a square\n4 2 0 0\n0 0 0\n1 1 0\n\n2 1 1\n3 0 1\n"
                                                                  "5 0\n0 0 1\n1 1 2\n2 2 3\n3 3 0\n4 0 2\n0\n")),
-                               {}, {pipeline::Stage::features});
+                               {}, pipeline::Stage::features);
   const features::Features& f = r.features;
   EXPECT_EQ(f.segments.size(), 5u);
   EXPECT_TRUE(f.sections.empty());
