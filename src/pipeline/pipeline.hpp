@@ -29,6 +29,7 @@ const char* stage_name(Stage stage);
 std::optional<Stage> stage_named(const std::string& name);
 
 // What to mesh: an SVG or Triangle .poly file, SVG text, or a soup of curves made by the caller.
+// run() refuses a soup with a coordinate that is not a finite number (invalid_input).
 struct Source {
   enum class Kind { file, svg_text, soup } kind = Kind::file;
   std::string path;       // file: its path (a name ending in .poly is read as Triangle's format)
