@@ -146,6 +146,15 @@ Source Source::curves(svg::FeatureSoup soup, std::string name) {
   return s;
 }
 
+Source Source::beziers(const std::vector<std::array<geometry::Vec2, 4>>& curves, std::string name) {
+  svg::FeatureSoup soup;
+  soup.sources.push_back({"path", "", 0, 1});
+  soup.curves.reserve(curves.size());
+  for (const auto& p : curves)
+    soup.curves.push_back({geometry::CubicBezier(p[0], p[1], p[2], p[3]), 0, {}, {}, {}, {}});
+  return Source::curves(std::move(soup), std::move(name));
+}
+
 Result run(const Source& source, const Parameters& parameters, const RunOptions& options) {
   parameters.validate();
   Result r;

@@ -3,6 +3,7 @@
 // (§4.2), with the parameters resolved once, a stop after any stage, what each stage made, and
 // the statistics `curvemesh mesh --stats` writes. The command line, the solvers, the public API,
 // the Python module, the benchmarks and the tests all mesh through it.
+#include <array>
 #include <functional>
 #include <iosfwd>
 #include <nlohmann/json.hpp>
@@ -40,6 +41,10 @@ struct Source {
   static Source file(std::string path);
   static Source svg(std::string text, std::string name = "<svg>");
   static Source curves(svg::FeatureSoup soup, std::string name = "<curves>");
+  // Cubic Bézier curves by their control points, as the reader's curves would be (no paint):
+  // curve i of the soup is curves[i], all from one element.
+  static Source beziers(const std::vector<std::array<geometry::Vec2, 4>>& curves,
+                        std::string name = "<curves>");
 };
 
 struct RunOptions {
