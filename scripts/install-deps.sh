@@ -13,6 +13,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # fuzzing (libFuzzer with ASan/UBSan)
   clang libclang-rt-14-dev
+  # the Python module and its tests
+  pybind11-dev python3-dev python3-pytest
   # independent readers used by the tests
   python3 python3-numpy python3-svgelements python3-meshio python3-gmsh
   # the drawings the corpus tests and scripts read (~8,100 SVGs, 180 MB)

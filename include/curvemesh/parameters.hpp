@@ -5,13 +5,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "curvemesh/export.hpp"
+
 namespace curvemesh {
 
 // The method's parameters with the paper's symbols and defaults (TriWild, Hu et al. 2019: §4,
 // §4.1, §4.2). Lengths are relative to d, the diagonal of the drawing's bounding box; each is
 // made absolute once d is known. Each field is the command line's long option of the same name
 // (`mu_rel` is --mu, `edge_length_rel` is -l/--edge-length, `alpha_deg` is --min-angle, ...).
-struct Parameters {
+struct CURVEMESH_API Parameters {
   // §4: feature processing.
   double mu_rel = 1e-3;               // --mu: μ, feature envelope; min distance between primary features
   double epsilon_rel = 2e-3;          // --epsilon: ε, envelope of secondary features (2μ); at least μ
@@ -37,7 +39,7 @@ struct Parameters {
 
 // Every failure curvemesh reports. what() is the message the command line prints after
 // "curvemesh: "; it names the input (file, line and element where it can).
-class Error : public std::runtime_error {
+class CURVEMESH_API Error : public std::runtime_error {
  public:
   enum class Kind {
     invalid_parameters,  // Parameters::validate refused them (the command line's exit code 2)

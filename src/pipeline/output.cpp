@@ -31,6 +31,19 @@ io::HighOrderMesh high_order_mesh(const Result& r) {
   return r.curved ? io::curved_mesh(*r.curved) : io::linear_mesh(r.linear);
 }
 
+std::vector<int> line_curves(const Result& r, const io::HighOrderMesh& mesh) {
+  require_mesh(r);
+  const mesh::TriMesh& corners = r.corners();
+  std::vector<int> out;
+  out.reserve(mesh.line_count());
+  for (int l = 0; l < mesh.line_count(); ++l) {
+    const auto ends = mesh.line(l);
+    const mesh::EdgeFeature* feature = corners.feature(ends[0], ends[1]);
+    out.push_back(feature ? feature->curve : -1);
+  }
+  return out;
+}
+
 void write_msh(const Result& r, const std::string& path, int version) {
   require_mesh(r);
   if (r.curved)
@@ -65,13 +78,13 @@ MeshedDrawing meshed_drawing(const Result& r) {
   const curve::CurvedMesh& curved = *r.curved;
   MeshedDrawing out;
   out.mesh = io::curved_mesh(curved);
+  out.line_curve = line_curves(r, out.mesh);
   out.diagonal = r.resolved.d;
   out.colours = curve_colours(r.soup);
   for (const auto& [stage, s] : r.stats["seconds"].items()) out.seconds += s.get<double>();
   for (const curve::FeatureLine& line : curved.lines) {
     const int a = line.nodes[0], b = line.nodes[1];
     const auto feature = curved.linear.feature(a, b);
-    out.line_curve.push_back(feature ? feature->curve : -1);
     // EdgeFeature's parameters are at the lower- and higher-numbered vertex. A secondary edge
     // has none (its vertices move within ε of the input): it follows its input segment, which runs
     // from the segment's t0 to its t1, when it points the same way.

@@ -14,6 +14,11 @@ namespace curvemesh::pipeline {
 // std::logic_error when no stage made a mesh.
 io::HighOrderMesh high_order_mesh(const Result& result);
 
+// Per line of `mesh` (high_order_mesh of the same result): the soup curve it lies on, from the
+// feature of its two ends in result.corners() (the vertices are the mesh's first nodes, same
+// ids); -1 for a side of the box, and for a secondary line when the input had no curves (.poly).
+std::vector<int> line_curves(const Result& result, const io::HighOrderMesh& mesh);
+
 // Gmsh .msh (version 41 or 22), VTK .vtu, and an SVG drawing of the mesh; each written whole or
 // not at all (io::OutputError).
 void write_msh(const Result& result, const std::string& path, int version = 41);

@@ -1,6 +1,8 @@
 #include "pipeline/pipeline.hpp"
 
 #include <chrono>
+#include <cmath>
+#include <sstream>
 
 #include "features/poly_input.hpp"
 #include "svg/error.hpp"
@@ -70,6 +72,32 @@ Error internal(const std::string& message) {
   return Error(Error::Kind::internal, message);
 }
 
+// A soup made by the caller, refused when a coordinate is NaN or infinite (the reader refuses
+// those in a file; here nothing else would).
+const svg::FeatureSoup& finite_soup(const svg::FeatureSoup& soup, const std::string& name) {
+  const auto finite = [](const geometry::Vec2& p) { return std::isfinite(p.x()) && std::isfinite(p.y()); };
+  const auto refuse = [&](const std::string& what, std::size_t i, const geometry::Vec2& p) {
+    std::ostringstream s;
+    s << name << ": " << what << " " << i << " has a coordinate that is not a finite number (" << p.x()
+      << ", " << p.y() << ")";
+    throw invalid(s.str());
+  };
+  for (std::size_t i = 0; i < soup.curves.size(); ++i)
+    for (const geometry::Vec2& p : soup.curves[i].bezier.p)
+      if (!finite(p)) refuse("curve", i, p);
+  for (std::size_t i = 0; i < soup.points.size(); ++i)
+    if (!finite(soup.points[i].p)) refuse("point", i, soup.points[i].p);
+  return soup;
+}
+
+// Coordinates near the top of the doubles' range (1e200) would make every length infinite.
+double finite_diagonal(const geometry::Box2& box, const std::string& name) {
+  const double d = box.diagonal();
+  if (!std::isfinite(d))
+    throw invalid(name + ": coordinates too large: the drawing's diagonal overflows a double");
+  return d;
+}
+
 }  // namespace
 
 const char* stage_name(Stage stage) {
@@ -118,6 +146,15 @@ Source Source::curves(svg::FeatureSoup soup, std::string name) {
   return s;
 }
 
+Source Source::beziers(const std::vector<std::array<geometry::Vec2, 4>>& curves, std::string name) {
+  svg::FeatureSoup soup;
+  soup.sources.push_back({"path", "", 0, 1});
+  soup.curves.reserve(curves.size());
+  for (const auto& p : curves)
+    soup.curves.push_back({geometry::CubicBezier(p[0], p[1], p[2], p[3]), 0, {}, {}, {}, {}});
+  return Source::curves(std::move(soup), std::move(name));
+}
+
 Result run(const Source& source, const Parameters& parameters, const RunOptions& options) {
   parameters.validate();
   Result r;
@@ -141,7 +178,7 @@ Result run(const Source& source, const Parameters& parameters, const RunOptions&
   try {
     if (source.kind == Source::Kind::file && ends_with(source.path, ".poly")) {
       r.features = features::read_poly(source.path);
-      r.resolved = resolve(parameters, r.features.box.diagonal());
+      r.resolved = resolve(parameters, finite_diagonal(r.features.box, source.name));
       r.features.lengths = r.resolved.features;
       stats["seconds"]["read"] = seconds_since(t);
       stats["seconds"]["features"] = 0.0;
@@ -154,10 +191,10 @@ Result run(const Source& source, const Parameters& parameters, const RunOptions&
       else if (source.kind == Source::Kind::svg_text)
         r.soup = svg::read_svg(source.text, read, source.name);
       else
-        r.soup = source.soup;
+        r.soup = finite_soup(source.soup, source.name);
       for (const std::string& w : r.soup.warnings) warn(w);
       stats["seconds"]["read"] = seconds_since(t);
-      r.resolved = resolve(parameters, features::drawing_box(r.soup).diagonal());
+      r.resolved = resolve(parameters, finite_diagonal(features::drawing_box(r.soup), source.name));
       if (last == Stage::read) return r;
       report(Stage::features);
       t = Clock::now();

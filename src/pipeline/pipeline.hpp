@@ -3,6 +3,7 @@
 // (§4.2), with the parameters resolved once, a stop after any stage, what each stage made, and
 // the statistics `curvemesh mesh --stats` writes. The command line, the solvers, the public API,
 // the Python module, the benchmarks and the tests all mesh through it.
+#include <array>
 #include <functional>
 #include <iosfwd>
 #include <nlohmann/json.hpp>
@@ -29,6 +30,7 @@ const char* stage_name(Stage stage);
 std::optional<Stage> stage_named(const std::string& name);
 
 // What to mesh: an SVG or Triangle .poly file, SVG text, or a soup of curves made by the caller.
+// run() refuses a soup with a coordinate that is not a finite number (invalid_input).
 struct Source {
   enum class Kind { file, svg_text, soup } kind = Kind::file;
   std::string path;       // file: its path (a name ending in .poly is read as Triangle's format)
@@ -39,6 +41,10 @@ struct Source {
   static Source file(std::string path);
   static Source svg(std::string text, std::string name = "<svg>");
   static Source curves(svg::FeatureSoup soup, std::string name = "<curves>");
+  // Cubic Bézier curves by their control points, as the reader's curves would be (no paint):
+  // curve i of the soup is curves[i], all from one element.
+  static Source beziers(const std::vector<std::array<geometry::Vec2, 4>>& curves,
+                        std::string name = "<curves>");
 };
 
 // Where a run is: a stage starting (pass 0), or one pass of the optimization (triangles, worst

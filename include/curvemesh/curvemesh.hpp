@@ -1,0 +1,118 @@
+#pragma once
+// curvemesh: coarse, curved, analysis-ready triangle meshes from vector drawings (the TriWild
+// method, Hu et al., SIGGRAPH 2019). The whole public C++ API: read a drawing (an SVG file, SVG
+// text, or cubic Bézier curves given by their control points), mesh it with Parameters, get
+// the mesh as plain arrays, write it, check it. Plain standard C++: no type of the libraries
+// the engine uses (CGAL, Eigen, GMP) appears here.
+//
+//   #include <curvemesh/curvemesh.hpp>
+//   curvemesh::Parameters p;
+//   p.edge_length_rel = 0.02;
+//   const curvemesh::Mesh m = curvemesh::mesh_file("drawing.svg", p);
+//   m.write("drawing.msh");
+//
+// Every failure throws curvemesh::Error (curvemesh/parameters.hpp), whose message is the one the
+// command line prints. The implementation is the shared library libcurvemesh (CMake:
+// find_package(curvemesh CONFIG) and target curvemesh::curvemesh). The functions keep no state
+// between calls: several threads may mesh at once.
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "curvemesh/export.hpp"
+#include "curvemesh/parameters.hpp"
+
+namespace curvemesh {
+
+// "0.1.0"
+CURVEMESH_API const char* version();
+
+// What a feature line of the mesh lies on.
+enum class LineTag {
+  primary,    // a curve of the drawing, reproduced exactly by curved edges
+  secondary,  // a piece of a curve kept within ε by straight edges
+  boundary,   // a side of the meshed box
+};
+
+// "primary", "secondary", "boundary".
+CURVEMESH_API const char* tag_name(LineTag tag);
+
+// A cubic Bézier curve by its four control points, (x, y) each, in the drawing's units.
+using Curve = std::array<std::array<double, 2>, 4>;
+
+// A finished mesh: certified (every curved triangle's Jacobian is positive on the whole
+// triangle), with its nodes, triangles and feature lines as plain arrays. Copies share them. A
+// default-constructed Mesh is empty (order 0, no nodes) and cannot be written.
+class CURVEMESH_API Mesh {
+ public:
+  // 3: cubic triangles of 10 nodes and lines of 4; 1 (Parameters::linear): 3 and 2.
+  int order() const;
+  std::size_t node_count() const;
+  std::size_t triangle_count() const;
+  std::size_t line_count() const;
+
+  // (x, y) per node, in the drawing's units (SVG's user space: y points down).
+  const std::vector<std::array<double, 2>>& nodes() const;
+  // Node ids, nodes_per_triangle() per triangle, in Gmsh's order: the corners counter-clockwise
+  // (as seen with y up), then two nodes on each edge 0→1, 1→2, 2→0 from its first corner on,
+  // then the centre.
+  const std::vector<std::int64_t>& triangles() const;
+  int nodes_per_triangle() const;
+  // Node ids of the feature lines, nodes_per_line() per line: both ends, then the inner nodes.
+  const std::vector<std::int64_t>& lines() const;
+  int nodes_per_line() const;
+  const std::vector<LineTag>& line_tags() const;
+  // Per line: the input curve it lies on (the index of a curve given to mesh_curves, or of the
+  // reader's curve in document order), -1 for the box's sides (and for every line of a .poly
+  // file, which has no curves).
+  const std::vector<std::int64_t>& line_curves() const;
+
+  // The statistics `curvemesh mesh --stats` writes (counts, quality, seconds per stage), as JSON;
+  // without the seconds spent writing, which the file has.
+  const std::string& stats_json() const;
+  // What the reader warned about (elements it skipped, a drawing with nothing drawn).
+  const std::vector<std::string>& warnings() const;
+
+  // Writes the mesh by the path's extension: ".msh" (Gmsh, `msh_version` 41 or 22), ".vtu" (VTK
+  // Lagrange triangles) or ".svg" (a drawing of the mesh). The file is the very one the command
+  // line writes for the same drawing and parameters. Throws Error (output) when it cannot be
+  // written, the extension (in any case) is none of these or the Mesh is empty, and Error
+  // (invalid_parameters) for another msh_version.
+  void write(const std::string& path, int msh_version = 41) const;
+
+  struct Impl;
+
+ private:
+  friend Mesh make_mesh(std::shared_ptr<const Impl> impl);
+  std::shared_ptr<const Impl> impl_;
+};
+
+// Meshes an SVG file (or a Triangle .poly file: points and segments, all secondary).
+CURVEMESH_API Mesh mesh_file(const std::string& path, const Parameters& parameters = {});
+// Meshes SVG text; `name` is what messages call it.
+CURVEMESH_API Mesh mesh_svg(const std::string& svg_text, const Parameters& parameters = {},
+                            const std::string& name = "<svg>");
+// Meshes cubic Bézier curves as the reader's curves would be (no fill, no colour). A coordinate
+// that is not a finite number is refused (Error, invalid_input).
+CURVEMESH_API Mesh mesh_curves(const std::vector<Curve>& curves, const Parameters& parameters = {});
+
+// The verdict of `curvemesh check` on a mesh as a file holds it: every element's Jacobian
+// determinant decided on the whole element with exact rationals on the coordinates as written.
+struct CheckReport {
+  int order = 0;
+  std::size_t triangles = 0;
+  std::size_t invalid = 0;         // elements not certified positive (0 for a valid mesh)
+  std::size_t undecided = 0;       // of those, the ones the exact test could not decide
+  double min_scaled_jacobian = 0;  // over the elements
+};
+
+// Checks a Gmsh .msh file (of any 2D triangle mesh of order 1, 2 or 3). Throws Error
+// (invalid_input) when the file cannot be read.
+CURVEMESH_API CheckReport check_file(const std::string& msh_path);
+// Checks the mesh as its .msh file would hold it (written with 17 significant digits, read back:
+// the same doubles). An empty Mesh gives an empty report.
+CURVEMESH_API CheckReport check(const Mesh& mesh);
+
+}  // namespace curvemesh

@@ -1,0 +1,306 @@
+"""curvemesh: coarse, curved, analysis-ready triangle meshes from vector drawings.
+
+The TriWild method (Hu et al., SIGGRAPH 2019) from Python: read a drawing (an SVG file, SVG
+text, or cubic Bezier curves given by their control points), mesh it, and get the mesh as NumPy
+arrays, as files, or as a meshio mesh.
+
+    import curvemesh
+    m = curvemesh.mesh("drawing.svg", edge_length=0.02)
+    m.nodes.shape, m.triangles.shape      # (N, 2) float64, (M, 10) int64
+    m.write("drawing.msh")                # the very file `curvemesh mesh` writes
+
+Options are the command line's long options with "_" for "-" (``mu``, ``epsilon``, ``eps_m``,
+``edge_length``, ``min_edge_length``, ``min_angle``, ``junction_angle``, ``linear``,
+``max_iterations``, ``stop_amips``, ``box_margin``, ``curved_stop_amips``,
+``max_curved_passes``); lengths are relative to the diagonal of the drawing's bounding box.
+
+Errors: an unreadable drawing or an invalid option value raises ValueError with the message the
+command line prints; an unknown option or a value of the wrong type raises TypeError; a file
+that cannot be written raises OSError; an internal failure (a mesh that could not be certified)
+raises RuntimeError. The library releases the GIL while it meshes, so threads mesh in parallel.
+"""
+
+import json
+import numbers
+import operator
+import os
+
+import numpy as np
+
+from . import _curvemesh
+
+__all__ = ["Mesh", "mesh", "mesh_curves", "check", "OPTIONS", "__version__"]
+
+__version__ = _curvemesh.version()
+
+# Option name -> (field of the C++ Parameters, kind, command-line option).
+_OPTIONS = {
+    "mu": ("mu_rel", float, "--mu"),
+    "epsilon": ("epsilon_rel", float, "--epsilon"),
+    "eps_m": ("eps_m_rel", float, "--eps-m"),
+    "edge_length": ("edge_length_rel", float, "--edge-length"),
+    "min_edge_length": ("min_edge_length_rel", float, "--min-edge-length"),
+    "min_angle": ("alpha_deg", float, "--min-angle"),
+    "junction_angle": ("junction_angle_deg", float, "--junction-angle"),
+    "linear": ("linear", bool, "--linear"),
+    "max_iterations": ("max_iterations", int, "--max-iterations"),
+    "stop_amips": ("stop_amips", float, "--stop-amips"),
+    "box_margin": ("box_margin_rel", float, "--box-margin"),
+    "curved_stop_amips": ("curved_stop_amips", float, "--curved-stop-amips"),
+    "max_curved_passes": ("max_curved_passes", int, "--max-curved-passes"),
+}
+
+#: The options mesh() and mesh_curves() take, each with its default.
+OPTIONS = {name: getattr(_curvemesh.Parameters(), field) for name, (field, _, _) in _OPTIONS.items()}
+
+_LINE_TAG_NAMES = np.array(_curvemesh.LINE_TAG_NAMES)
+# The physical groups of curvemesh's .msh files (and of Mesh.to_meshio()).
+_PHYSICAL = {"primary": 1, "secondary": 2, "boundary": 3, "domain": 4}
+
+
+def _parameters(function, options):
+    """The C++ parameters for `options`; TypeError for an unknown option or a value of the wrong
+    type, ValueError (the library's message) for an invalid value."""
+    p = _curvemesh.Parameters()
+    for name, value in options.items():
+        if name not in _OPTIONS:
+            raise TypeError(f"{function}() got an unexpected keyword argument '{name}'")
+        field, kind, flag = _OPTIONS[name]
+        if kind is bool:
+            if not isinstance(value, (bool, np.bool_)):
+                raise TypeError(f"{name} must be True or False, not {type(value).__name__}")
+            value = bool(value)
+        elif kind is int:
+            if isinstance(value, (bool, np.bool_)):
+                raise TypeError(f"{name} must be an integer, not bool")
+            try:
+                value = operator.index(value)
+            except TypeError:
+                raise TypeError(f"{name} must be an integer, not {type(value).__name__}") from None
+            if not -(2**31) <= value < 2**31:
+                raise ValueError(f"{flag} ({value}) is out of range")
+        else:
+            if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+                raise TypeError(f"{name} must be a number, not {type(value).__name__}")
+            value = float(value)
+        setattr(p, field, value)
+    p.validate()
+    return p
+
+
+def _path(path):
+    """A path (str or os.PathLike) as the bytes the file system takes."""
+    return os.fsencode(path)
+
+
+class Mesh:
+    """A finished triangle mesh, as mesh() and mesh_curves() return it.
+
+    Curved (order 3): cubic triangles of 10 nodes and feature lines of 4, every triangle's
+    Jacobian certified positive. Linear (``linear=True``, order 1): triangles of 3 nodes, lines
+    of 2. Coordinates are in the drawing's units (SVG user space: y points down).
+
+    The arrays are read-only and made once, on first use.
+    """
+
+    __slots__ = ("_mesh", "_arrays")
+
+    def __init__(self, compiled_mesh):
+        """Wraps the compiled library's mesh; use mesh() or mesh_curves() to make one."""
+        if not isinstance(compiled_mesh, _curvemesh.Mesh):
+            raise TypeError("use curvemesh.mesh() or curvemesh.mesh_curves() to make a Mesh")
+        self._mesh = compiled_mesh
+        self._arrays = {}
+
+    def _array(self, name, make):
+        a = self._arrays.get(name)
+        if a is None:
+            a = make()
+            a.flags.writeable = False
+            self._arrays[name] = a
+        return a
+
+    @property
+    def order(self):
+        """3 for a curved mesh (10-node triangles), 1 for a linear one (3-node triangles)."""
+        return self._mesh.order
+
+    @property
+    def nodes(self):
+        """The nodes' (x, y): float64 array of shape (N, 2)."""
+        return self._array("nodes", self._mesh.nodes)
+
+    @property
+    def triangles(self):
+        """Node indices per triangle: int64 array (M, 10), or (M, 3) when linear.
+
+        Gmsh's node order: the three corners counter-clockwise (as seen with y up), then two
+        nodes on each edge 0-1, 1-2, 2-0 from its first corner on, then the centre.
+        """
+        return self._array("triangles", self._mesh.triangles)
+
+    @property
+    def lines(self):
+        """Node indices per feature line: int64 array (K, 4), or (K, 2) when linear; both ends
+        first, then the inner nodes (Gmsh's order)."""
+        return self._array("lines", self._mesh.lines)
+
+    @property
+    def line_tags(self):
+        """What each feature line lies on: a str array (K,) of "primary" (a curve of the
+        drawing, reproduced by curved edges), "secondary" (a piece of a curve kept within
+        epsilon by straight edges) or "boundary" (a side of the meshed box)."""
+        return self._array("line_tags", lambda: _LINE_TAG_NAMES[self._mesh.line_tag_codes()])
+
+    @property
+    def line_curves(self):
+        """The input curve each feature line lies on: int64 array (K,), the index of a curve
+        given to mesh_curves() or of the reader's curve in document order; -1 for the box's
+        sides."""
+        return self._array("line_curves", self._mesh.line_curves)
+
+    @property
+    def stats(self):
+        """The statistics `curvemesh mesh --stats` writes (counts, quality, seconds per stage),
+        as a new dict."""
+        return json.loads(self._mesh.stats_json)
+
+    @property
+    def warnings(self):
+        """What the reader warned about (elements it skipped, a drawing with nothing drawn), as a
+        new list of str."""
+        return list(self._mesh.warnings)
+
+    def write(self, path, msh_version=41):
+        """Writes the mesh to `path` (str or os.PathLike) by its extension: ".msh" (Gmsh ASCII,
+        ``msh_version`` 41 for 4.1 or 22 for 2.2), ".vtu" (VTK Lagrange triangles) or ".svg" (a
+        drawing of the mesh). The file is byte for byte the one the command line writes for the
+        same drawing and options. Raises OSError when it cannot be written or the extension is
+        none of these."""
+        if isinstance(msh_version, (bool, np.bool_)) or msh_version not in (41, 22):
+            raise ValueError(f"msh_version must be 41 or 22, not {msh_version!r}")
+        self._mesh.write(_path(path), int(msh_version))
+
+    def to_meshio(self):
+        """The mesh as a meshio.Mesh: the mesh meshio reads from the .msh file write() makes.
+
+        Points are (N, 3) with z = 0 (what meshio's readers give and its writers take). Cells come
+        as in the file: one block of "line4" per line tag present (primary, secondary, boundary;
+        each block in the order of ``lines``), then one of "triangle10" ("line" and "triangle"
+        when linear); meshio's node order for these cells is Gmsh's, the order of ``triangles``
+        and ``lines``. Cell data "gmsh:physical" holds each cell's physical group (1 primary, 2
+        secondary, 3 boundary, 4 domain, named in field_data) and "gmsh:geometrical" its entity;
+        point data "gmsh:dim_tags" the nodes' entities, classified as Gmsh does (those of a
+        feature line on its curve), so that meshio writes Gmsh 4.1 files of it that it reads back
+        (write()'s own files put every node on the surface). Gmsh 2.2 needs none of it.
+
+        meshio cannot write "triangle10" to VTU: for a curved VTU, use write("mesh.vtu").
+        """
+        import meshio
+
+        points = np.zeros((len(self.nodes), 3))
+        points[:, :2] = self.nodes
+        line_type, triangle_type = ("line4", "triangle10") if self.order == 3 else ("line", "triangle")
+        codes = self._mesh.line_tag_codes()
+        cells, physical, geometrical, field_data = [], [], [], {}
+        # Lines by physical group, ascending; each group is one curve entity tagged by the group.
+        for name in sorted(_curvemesh.LINE_TAG_NAMES, key=_PHYSICAL.get):
+            mine = codes == _curvemesh.LINE_TAG_NAMES.index(name)
+            if not mine.any():
+                continue
+            tag = _PHYSICAL[name]
+            cells.append(meshio.CellBlock(line_type, self.lines[mine]))
+            physical.append(np.full(mine.sum(), tag, dtype=np.int64))
+            geometrical.append(np.full(mine.sum(), tag, dtype=np.int64))
+            field_data[name] = np.array([tag, 1])
+        if len(self.triangles):  # the domain: physical group 4 on surface 1
+            cells.append(meshio.CellBlock(triangle_type, np.array(self.triangles)))
+            physical.append(np.full(len(self.triangles), _PHYSICAL["domain"], dtype=np.int64))
+            geometrical.append(np.ones(len(self.triangles), dtype=np.int64))
+            field_data["domain"] = np.array([_PHYSICAL["domain"], 2])
+        return meshio.Mesh(
+            points,
+            cells,
+            point_data={"gmsh:dim_tags": self._node_entities(codes)},
+            cell_data={"gmsh:physical": physical, "gmsh:geometrical": geometrical},
+            field_data=field_data,
+        )
+
+    def _node_entities(self, codes):
+        """(dim, tag) of the Gmsh entity of each node, as Gmsh classifies nodes: a node of a
+        feature line on that line's curve entity (where lines of several tags meet, primary
+        before secondary before boundary), every other node on surface 1. meshio's Gmsh 4.1
+        writer makes its entities of these, so each curve entity must hold a node."""
+        dim_tags = np.empty((len(self.nodes), 2), dtype=np.int64)
+        dim_tags[:] = (2, 1)
+        names = sorted(_curvemesh.LINE_TAG_NAMES, key=_PHYSICAL.get)
+        lines_of = {name: self.lines[codes == _curvemesh.LINE_TAG_NAMES.index(name)] for name in names}
+        for name in reversed(names):
+            dim_tags[lines_of[name].ravel()] = (1, _PHYSICAL[name])
+        for name in names:
+            lines, tag = lines_of[name], _PHYSICAL[name]
+            if len(lines) and not np.any((dim_tags[:, 0] == 1) & (dim_tags[:, 1] == tag)):
+                dim_tags[lines[0, -1]] = (1, tag)
+        return dim_tags
+
+    def __repr__(self):
+        return (
+            f"<curvemesh.Mesh order={self.order}: {len(self.nodes)} nodes, "
+            f"{len(self.triangles)} triangles, {len(self.lines)} lines>"
+        )
+
+
+def _is_svg_text(svg):
+    return isinstance(svg, str) and svg.lstrip().startswith("<")
+
+
+def mesh(svg, **options):
+    """Meshes a drawing and returns a Mesh.
+
+    `svg` is a path (str or os.PathLike such as pathlib.Path) to an SVG file (or a Triangle
+    .poly file), or SVG text: a str that starts with "<" after leading white space. `options`
+    are the command line's long options with "_" for "-":
+
+        mu, epsilon, eps_m, edge_length, min_edge_length, min_angle, junction_angle, linear,
+        max_iterations, stop_amips, box_margin, curved_stop_amips, max_curved_passes
+
+    (see curvemesh.OPTIONS for their defaults). Raises ValueError with the command line's message
+    when the drawing cannot be read or an option's value is invalid, TypeError for an unknown
+    option.
+    """
+    parameters = _parameters("mesh", options)
+    if _is_svg_text(svg):
+        return Mesh(_curvemesh.mesh_svg(svg, parameters))
+    if not isinstance(svg, (str, os.PathLike)):
+        raise TypeError(f"svg must be a path or SVG text, not {type(svg).__name__}")
+    return Mesh(_curvemesh.mesh_file(_path(svg), parameters))
+
+
+def mesh_curves(control_points, **options):
+    """Meshes cubic Bezier curves and returns a Mesh.
+
+    `control_points` is a float array-like of shape (n, 4, 2): one cubic Bezier curve per row,
+    its four (x, y) control points. The curves are meshed as the SVG reader's curves would be
+    (no fill, no colour); Mesh.line_curves refers to them by row. `options` are those of mesh().
+    Raises ValueError for a wrong shape or a point that is not finite.
+    """
+    parameters = _parameters("mesh_curves", options)
+    points = np.asarray(control_points, dtype=np.float64)
+    if points.ndim != 3 or points.shape[1:] != (4, 2):
+        raise ValueError(
+            f"control_points must have shape (n, 4, 2): one cubic Bezier curve of 4 (x, y) points per "
+            f"row; got shape {points.shape}"
+        )
+    return Mesh(_curvemesh.mesh_curves(np.ascontiguousarray(points), parameters))
+
+
+def check(path_or_mesh):
+    """The verdict of `curvemesh check` on a Gmsh .msh file (a path: str or os.PathLike) or on a
+    Mesh (as its .msh file holds it): a dict with "order", "triangles", "invalid" (elements not
+    certified positive: 0 for a valid mesh), "undecided" (of those, the ones the exact test could
+    not decide) and "min_scaled_jacobian". Raises ValueError when the file cannot be read."""
+    if isinstance(path_or_mesh, Mesh):
+        return _curvemesh.check(path_or_mesh._mesh)
+    if not isinstance(path_or_mesh, (str, os.PathLike)):
+        raise TypeError(f"check() takes a path or a Mesh, not {type(path_or_mesh).__name__}")
+    return _curvemesh.check_file(_path(path_or_mesh))

@@ -1,0 +1,133 @@
+#include "pipeline/check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "geometry/closest_point.hpp"
+#include "geometry/p3_triangle.hpp"
+
+namespace curvemesh::pipeline {
+
+namespace {
+
+using geometry::P3NodesT;
+using geometry::PointT;
+using geometry::Vec2;
+
+PointT<mpq_class> exact(const Vec2& p) {
+  return {mpq_class(p.x()), mpq_class(p.y())};
+}
+
+// The element's map written as a P3 map, exactly: a P1 or P2 map is evaluated at the ten P3
+// reference nodes (rational points), which gives the P3 nodes of the very same map.
+P3NodesT<mpq_class> as_p3(const io::HighOrderMesh& m, std::size_t t) {
+  const int per = m.triangle_size();
+  const auto n = m.triangle(static_cast<int>(t));
+  P3NodesT<mpq_class> out;
+  if (m.order == 3) {
+    for (int i = 0; i < 10; ++i) out[i] = exact(m.nodes[n[i]]);
+    return out;
+  }
+  std::array<PointT<mpq_class>, 6> x;
+  for (int i = 0; i < per; ++i) x[i] = exact(m.nodes[n[i]]);
+  for (int i = 0; i < 10; ++i) {
+    const mpq_class u(geometry::kP3ReferenceNodesTimes3[i][0], 3),
+        v(geometry::kP3ReferenceNodesTimes3[i][1], 3);
+    const mpq_class l0 = 1 - u - v, l1 = u, l2 = v;
+    std::array<mpq_class, 6> w;
+    if (m.order == 1) {
+      w = {l0, l1, l2, 0, 0, 0};
+    } else {  // Gmsh's 6-node triangle: corners, then the middles of edges 0-1, 1-2, 2-0
+      w = {l0 * (2 * l0 - 1), l1 * (2 * l1 - 1), l2 * (2 * l2 - 1), 4 * l0 * l1, 4 * l1 * l2, 4 * l2 * l0};
+    }
+    out[i] = {0, 0};
+    for (int k = 0; k < per; ++k)
+      for (int c = 0; c < 2; ++c) out[i][c] += w[k] * x[k][c];
+  }
+  return out;
+}
+
+geometry::P3Nodes to_double(const P3NodesT<mpq_class>& p) {
+  geometry::P3Nodes out;
+  for (int i = 0; i < 10; ++i) out[i] = Vec2(p[i][0].get_d(), p[i][1].get_d());
+  return out;
+}
+
+// A point of line element `l` at s in [0, 1] (its nodes: the ends, then the inner ones in order).
+Vec2 line_point(const io::HighOrderMesh& m, std::size_t l, double s) {
+  const auto nodes = m.line(static_cast<int>(l));
+  const int order = static_cast<int>(nodes.size()) - 1;
+  std::vector<Vec2> p(order + 1);
+  std::vector<double> at(order + 1);
+  p[0] = m.nodes[nodes[0]];
+  at[0] = 0;
+  p[order] = m.nodes[nodes[1]];
+  at[order] = 1;
+  for (int i = 1; i < order; ++i) {
+    p[i] = m.nodes[nodes[i + 1]];
+    at[i] = double(i) / order;
+  }
+  Vec2 x = Vec2::Zero();
+  for (int i = 0; i <= order; ++i) {
+    double w = 1;
+    for (int j = 0; j <= order; ++j)
+      if (j != i) w *= (s - at[j]) / (at[i] - at[j]);
+    x += w * p[i];
+  }
+  return x;
+}
+
+}  // namespace
+
+MeshCheck check_mesh(const io::HighOrderMesh& m) {
+  MeshCheck out;
+  out.order = m.order;
+  out.triangles = static_cast<std::size_t>(m.triangle_count());
+  double min_scaled = INFINITY;
+  for (std::size_t t = 0; t < out.triangles; ++t) {
+    const auto p = as_p3(m, t);
+    const auto verdict = geometry::certify_jacobian_exact(p);
+    out.invalid += verdict != geometry::JacobianVerdict::positive;
+    out.undecided += verdict == geometry::JacobianVerdict::undecided;
+    min_scaled = std::min(min_scaled, geometry::certify_jacobian(to_double(p)).scaled_jacobian);
+  }
+  out.min_scaled_jacobian = out.triangles ? min_scaled : 0.0;
+  return out;
+}
+
+FeatureDistance feature_distance(const io::HighOrderMesh& m, const svg::FeatureSoup& soup) {
+  geometry::Box2 box;
+  for (const auto& c : soup.curves)
+    for (const Vec2& q : c.bezier.p) box.add(q);
+  // Curves by bounding box, for a cheap lower bound before the exact closest point.
+  std::vector<geometry::Box2> boxes;
+  for (const auto& c : soup.curves) {
+    geometry::Box2 b;
+    for (const Vec2& q : c.bezier.p) b.add(q);
+    boxes.push_back(b);
+  }
+  const auto box_distance = [](const geometry::Box2& b, const Vec2& q) {
+    const double dx = std::max({b.min.x() - q.x(), 0.0, q.x() - b.max.x()});
+    const double dy = std::max({b.min.y() - q.y(), 0.0, q.y() - b.max.y()});
+    return std::hypot(dx, dy);
+  };
+  FeatureDistance out;
+  for (std::size_t l = 0; l < static_cast<std::size_t>(m.line_count()); ++l) {
+    const auto name = m.physical_names.find({1, m.line_physical[l]});
+    if (name == m.physical_names.end() || name->second != "primary") continue;
+    ++out.primary_lines;
+    for (int i = 0; i <= 8; ++i) {
+      const Vec2 q = line_point(m, l, i / 8.0);
+      double best = INFINITY;
+      for (std::size_t c = 0; c < soup.curves.size(); ++c)
+        if (box_distance(boxes[c], q) < best)
+          best = std::min(best, geometry::closest_point(soup.curves[c].bezier, q).distance);
+      out.max = std::max(out.max, best);
+    }
+  }
+  out.max_rel = box.diagonal() > 0 ? out.max / box.diagonal() : 0.0;
+  return out;
+}
+
+}  // namespace curvemesh::pipeline

@@ -1,0 +1,409 @@
+"""curvemesh.mesh(): the same files as the command line, the inputs it takes, the arrays it gives,
+the errors it raises."""
+import json
+import pathlib
+import re
+
+import numpy as np
+import pytest
+
+import curvemesh
+
+DRAWINGS = ["diffusion-curves", "open-curves", "overlapping-shapes", "square-with-hole", "transforms-and-use"]
+
+# Every option, each away from its default, as the command line and as mesh() take it.
+ALL_OPTIONS_CLI = [
+    "--mu", "0.0015", "--epsilon", "0.004", "--eps-m", "1e-7", "-l", "0.08", "--min-edge-length", "2e-4",
+    "--min-angle", "12", "--junction-angle", "15", "--max-iterations", "30", "--stop-amips", "8",
+    "--box-margin", "0.1", "--curved-stop-amips", "15", "--max-curved-passes", "6",
+]
+ALL_OPTIONS = dict(
+    mu=0.0015, epsilon=0.004, eps_m=1e-7, edge_length=0.08, min_edge_length=2e-4, min_angle=12,
+    junction_angle=15, max_iterations=30, stop_amips=8, box_margin=0.1, curved_stop_amips=15,
+    max_curved_passes=6,
+)
+
+
+def cli_files(run_cli, tmp_path, svg, *options):
+    """The .msh (4.1 and 2.2), .vtu and .svg files the command line writes for `svg`."""
+    out = tmp_path / "cli"
+    out.mkdir(exist_ok=True)
+    run_cli("mesh", svg, "-o", out / "m.msh", "--vtu", out / "m.vtu", "--svg", out / "m.svg", *options)
+    run_cli("mesh", svg, "-o", out / "m22.msh", "--msh-version", "2.2", *options)
+    return {name: (out / name).read_bytes() for name in ["m.msh", "m.vtu", "m.svg", "m22.msh"]}
+
+
+def python_files(m, tmp_path):
+    out = tmp_path / "py"
+    out.mkdir(exist_ok=True)
+    m.write(out / "m.msh")
+    m.write(str(out / "m.vtu"))
+    m.write(out / "m.svg")
+    m.write(out / "m22.msh", msh_version=22)
+    return {name: (out / name).read_bytes() for name in ["m.msh", "m.vtu", "m.svg", "m22.msh"]}
+
+
+def assert_same_files(cli, py):
+    for name in cli:
+        assert py[name] == cli[name], f"{name} differs from the command line's"
+
+
+@pytest.mark.parametrize("name", DRAWINGS)
+def test_curved_files_are_the_command_lines(name, examples, run_cli, tmp_path):
+    svg = examples / f"{name}.svg"
+    assert_same_files(cli_files(run_cli, tmp_path, svg), python_files(curvemesh.mesh(str(svg)), tmp_path))
+
+
+@pytest.mark.parametrize("name", ["overlapping-shapes", "transforms-and-use"])
+def test_linear_files_are_the_command_lines(name, examples, run_cli, tmp_path):
+    svg = examples / f"{name}.svg"
+    cli = cli_files(run_cli, tmp_path, svg, "--linear", "-l", "0.1")
+    m = curvemesh.mesh(svg, linear=True, edge_length=0.1)
+    assert m.order == 1
+    assert_same_files(cli, python_files(m, tmp_path))
+
+
+@pytest.mark.parametrize("linear", [False, True])
+def test_every_option_as_on_the_command_line(linear, examples, run_cli, tmp_path):
+    svg = examples / "overlapping-shapes.svg"
+    cli = cli_files(run_cli, tmp_path, svg, *ALL_OPTIONS_CLI, *(["--linear"] if linear else []))
+    m = curvemesh.mesh(svg, linear=linear, **ALL_OPTIONS)
+    assert_same_files(cli, python_files(m, tmp_path))
+    default = curvemesh.mesh(svg, linear=linear)
+    assert len(default.triangles) != len(m.triangles)  # the options did change the mesh
+
+
+def test_svg_text_and_path_inputs(examples, run_cli, tmp_path):
+    svg = examples / "transforms-and-use.svg"
+    cli = cli_files(run_cli, tmp_path, svg, "-l", "0.1")
+    text = svg.read_text(encoding="utf-8")
+    for source in [svg, str(svg), text, "\n  \t" + text]:
+        assert_same_files(cli, python_files(curvemesh.mesh(source, edge_length=0.1), tmp_path))
+
+
+def test_relative_path(examples, run_cli, tmp_path, monkeypatch):
+    monkeypatch.chdir(examples)
+    m = curvemesh.mesh("square-with-hole.svg")
+    assert len(m.triangles) > 0
+
+
+def test_stats_are_the_command_lines(examples, run_cli, tmp_path):
+    svg = examples / "overlapping-shapes.svg"
+    run_cli("mesh", svg, "-o", tmp_path / "m.msh", "--stats", tmp_path / "s.json")
+    cli = json.loads((tmp_path / "s.json").read_text())
+    py = curvemesh.mesh(svg).stats
+    assert isinstance(py, dict)
+
+    def without_times(d):
+        kept = {k: v for k, v in d.items() if k not in ("seconds", "input")}
+        return {k: without_times(v) if isinstance(v, dict) else v for k, v in kept.items()}
+
+    assert without_times(py) == without_times(cli)
+    assert set(py["seconds"]) == set(cli["seconds"]) - {"write"}  # meshing writes nothing
+
+
+@pytest.mark.parametrize("linear", [False, True])
+def test_arrays(linear, examples):
+    m = curvemesh.mesh(examples / "overlapping-shapes.svg", linear=linear)
+    per_triangle, per_line = (3, 2) if linear else (10, 4)
+    assert m.order == (1 if linear else 3)
+    assert m.nodes.dtype == np.float64 and m.nodes.ndim == 2 and m.nodes.shape[1] == 2
+    assert m.triangles.dtype == np.int64 and m.triangles.shape[1] == per_triangle
+    assert m.lines.dtype == np.int64 and m.lines.shape[1] == per_line
+    n, k = len(m.nodes), len(m.lines)
+    assert len(m.triangles) > 0 and k > 0
+    assert m.triangles.min() >= 0 and m.triangles.max() < n
+    assert m.lines.min() >= 0 and m.lines.max() < n
+    assert np.all(np.isfinite(m.nodes))
+    assert m.line_tags.shape == (k,) and m.line_tags.dtype.kind == "U"
+    assert set(m.line_tags) == {"primary", "secondary", "boundary"}
+    assert m.line_curves.dtype == np.int64 and m.line_curves.shape == (k,)
+    assert np.all((m.line_curves == -1) == (m.line_tags == "boundary"))
+    assert m.line_curves.max() >= 0
+    assert m.stats["mesh"]["triangles"] > 0
+    assert m.warnings == []
+    # Corners come first and run counter-clockwise with y up: clockwise in SVG's y-down space.
+    a, b, c = (m.nodes[m.triangles[:, i]] for i in range(3))
+    cross = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
+    assert np.all(cross > 0) or np.all(cross < 0)
+    # Read-only and the same object each time.
+    assert m.nodes is m.nodes
+    with pytest.raises(ValueError):
+        m.nodes[0, 0] = 1.0
+    assert re.match(r"<curvemesh\.Mesh order=[13]: \d+ nodes, \d+ triangles, \d+ lines>", repr(m))
+
+
+def test_arrays_match_the_msh_file(examples, tmp_path):
+    """The arrays are the file's: nodes in order, lines grouped by tag then triangles."""
+    m = curvemesh.mesh(examples / "square-with-hole.svg")
+    m.write(tmp_path / "m.msh", msh_version=22)
+    lines = (tmp_path / "m.msh").read_text().splitlines()
+    start = lines.index("$Nodes")
+    count = int(lines[start + 1])
+    nodes = np.array([[float(v) for v in line.split()[1:3]] for line in lines[start + 2 : start + 2 + count]])
+    assert np.array_equal(nodes, m.nodes)
+    start = lines.index("$Elements")
+    elements = [list(map(int, line.split())) for line in lines[start + 2 : lines.index("$EndElements")]]
+    triangles = np.array([e[5:] for e in elements if e[1] == 21]) - 1
+    assert np.array_equal(triangles, m.triangles)
+    order = {"primary": 1, "secondary": 2, "boundary": 3}
+    file_lines = sorted((e[3], tuple(np.array(e[5:]) - 1)) for e in elements if e[1] == 26)
+    ours = sorted((order[t], tuple(l)) for t, l in zip(m.line_tags, m.lines))
+    assert file_lines == ours
+
+
+def test_check(examples, run_cli, tmp_path):
+    m = curvemesh.mesh(examples / "overlapping-shapes.svg")
+    m.write(tmp_path / "m.msh")
+    cli = json.loads(run_cli("check", tmp_path / "m.msh", "--json").stdout)
+    path = tmp_path / "m.msh"
+    for report in [curvemesh.check(m), curvemesh.check(path), curvemesh.check(str(path))]:
+        assert set(report) == {"order", "triangles", "invalid", "undecided", "min_scaled_jacobian"}
+        assert report["order"] == 3 and report["invalid"] == 0 and report["undecided"] == 0
+        assert report["triangles"] == len(m.triangles)
+        for key in report:
+            assert report[key] == cli[key]
+    with pytest.raises(ValueError):
+        curvemesh.check(tmp_path / "missing.msh")
+    with pytest.raises(TypeError):
+        curvemesh.check(42)
+
+
+def test_version():
+    assert re.fullmatch(r"\d+\.\d+\.\d+", curvemesh.__version__)
+
+
+def test_options_and_defaults():
+    assert set(curvemesh.OPTIONS) == {
+        "mu", "epsilon", "eps_m", "edge_length", "min_edge_length", "min_angle", "junction_angle", "linear",
+        "max_iterations", "stop_amips", "box_margin", "curved_stop_amips", "max_curved_passes",
+    }
+    assert curvemesh.OPTIONS["edge_length"] == 0.05 and curvemesh.OPTIONS["linear"] is False
+
+
+# --- errors ---------------------------------------------------------------------------------------
+
+
+def cli_message(run_cli, *args):
+    result = run_cli(*args, check=False)
+    assert result.returncode != 0
+    line = result.stderr.strip().splitlines()[-1]
+    assert line.startswith("curvemesh: ")
+    return line[len("curvemesh: ") :]
+
+
+def test_bad_svg_raises_the_readers_message(run_cli, tmp_path):
+    broken = tmp_path / "broken.svg"
+    broken.write_text("<svg><path d='M 0 0 L 1 1'/>")  # not well-formed
+    message = cli_message(run_cli, "mesh", broken, "-o", tmp_path / "broken.msh")
+    with pytest.raises(ValueError) as error:
+        curvemesh.mesh(broken)
+    assert str(error.value) == message
+    assert not (tmp_path / "broken.msh").exists()
+    for text, message in [
+        ("<svg", "<svg>: line 1: not well-formed XML"),
+        ("<html/>", "<svg>: line 1, <html>: the root element is <html>, not <svg>"),
+        ('<svg><path d="M 0 0 L 1e999 0"/></svg>', "<svg>: line 1, <path>: bad path data"),
+    ]:
+        with pytest.raises(ValueError, match="^" + re.escape(message)):
+            curvemesh.mesh(text)
+
+
+def test_warnings_are_the_command_lines(run_cli, tmp_path):
+    bad = tmp_path / "bad.svg"
+    bad.write_text('<svg xmlns="http://www.w3.org/2000/svg">\n<path d="M 0 0 L 10 0 L 10"/>\n</svg>\n')
+    stderr = run_cli("mesh", bad, "-o", tmp_path / "bad.msh").stderr
+    m = curvemesh.mesh(bad)
+    assert m.warnings == ["line 2, <path>: path data ends inside a command; drawn up to there"]
+    for w in m.warnings:
+        assert f"curvemesh: {bad}: warning: {w}" in stderr
+    assert curvemesh.mesh('<svg xmlns="http://www.w3.org/2000/svg"></svg>').warnings == [
+        "nothing is drawn; meshing the canvas alone"
+    ]
+    assert curvemesh.mesh(bad.read_text()).warnings == m.warnings  # SVG text: the same warnings
+
+
+def test_missing_file_raises_the_command_lines_message(run_cli, tmp_path):
+    missing = tmp_path / "missing.svg"
+    message = cli_message(run_cli, "mesh", missing, "-o", tmp_path / "m.msh")
+    with pytest.raises(ValueError) as error:
+        curvemesh.mesh(missing)
+    assert str(error.value) == message
+
+
+@pytest.mark.parametrize(
+    "options, message",
+    [
+        (dict(mu=0.001, epsilon=0.0005), "--epsilon (0.0005) must be at least --mu (0.001)"),
+        (dict(edge_length=-0.1), "--edge-length (-0.1) must be a positive number"),
+        (dict(mu=0), "--mu (0) must be a positive number"),
+        (dict(mu=float("nan")), "--mu (nan) must be a positive number"),
+        (dict(min_angle=90), "--min-angle (90) must be in [0.1, 60]"),
+        (dict(max_iterations=-1), "--max-iterations (-1) must be a non-negative number"),
+        (dict(max_curved_passes=2**40), "--max-curved-passes (1099511627776) is out of range"),
+    ],
+)
+def test_invalid_values_raise_value_error(options, message, examples):
+    with pytest.raises(ValueError) as error:
+        curvemesh.mesh(examples / "square-with-hole.svg", **options)
+    assert str(error.value) == message
+    with pytest.raises(ValueError):
+        curvemesh.mesh_curves(np.zeros((1, 4, 2)), **options)
+
+
+def test_invalid_value_message_is_the_command_lines(examples, run_cli, tmp_path):
+    message = cli_message(run_cli, "mesh", examples / "square-with-hole.svg", "-o", tmp_path / "m.msh",
+                          "--mu", "0.001", "--epsilon", "0.0005")
+    with pytest.raises(ValueError) as error:
+        curvemesh.mesh(examples / "square-with-hole.svg", mu=0.001, epsilon=0.0005)
+    assert str(error.value) == message
+
+
+@pytest.mark.parametrize(
+    "options, word",
+    [
+        (dict(edge_lenght=0.1), "edge_lenght"),
+        (dict(l=0.1), "'l'"),
+        (dict(mu="0.1"), "mu"),
+        (dict(linear=1), "linear"),
+        (dict(max_iterations=2.5), "max_iterations"),
+        (dict(edge_length=True), "edge_length"),
+    ],
+)
+def test_unknown_options_and_wrong_types_raise_type_error(options, word, examples):
+    with pytest.raises(TypeError, match=re.escape(word)):
+        curvemesh.mesh(examples / "square-with-hole.svg", **options)
+    with pytest.raises(TypeError, match=re.escape(word)):
+        curvemesh.mesh_curves(np.zeros((1, 4, 2)), **options)
+
+
+def test_numpy_scalars_are_taken(examples, tmp_path):
+    svg = examples / "square-with-hole.svg"
+    a = curvemesh.mesh(svg, edge_length=np.float32(0.25), max_iterations=np.int64(20), linear=np.bool_(True))
+    b = curvemesh.mesh(svg, edge_length=float(np.float32(0.25)), max_iterations=20, linear=True)
+    assert np.array_equal(a.triangles, b.triangles) and np.array_equal(a.nodes, b.nodes)
+
+
+def test_wrong_input_type():
+    with pytest.raises(TypeError):
+        curvemesh.mesh(42)
+    with pytest.raises(TypeError):
+        curvemesh.mesh(None)
+
+
+def test_output_errors_raise_os_error(examples, tmp_path):
+    m = curvemesh.mesh(examples / "square-with-hole.svg", linear=True)
+    with pytest.raises(OSError):
+        m.write(tmp_path / "no-such-folder" / "m.msh")
+    with pytest.raises(OSError):
+        m.write(tmp_path / "m.txt")
+    with pytest.raises(ValueError):
+        m.write(tmp_path / "m.msh", msh_version=3)
+    with pytest.raises(TypeError):
+        curvemesh.Mesh(None)
+
+
+# --- mesh_curves ----------------------------------------------------------------------------------
+
+K = 0.5522847498307936  # a quarter circle's cubic: control points at this fraction of the radius
+
+
+def circle(cx, cy, r):
+    k = K * r
+    return [
+        [[cx + r, cy], [cx + r, cy + k], [cx + k, cy + r], [cx, cy + r]],
+        [[cx, cy + r], [cx - k, cy + r], [cx - r, cy + k], [cx - r, cy]],
+        [[cx - r, cy], [cx - r, cy - k], [cx - k, cy - r], [cx, cy - r]],
+        [[cx, cy - r], [cx + k, cy - r], [cx + r, cy - k], [cx + r, cy]],
+    ]
+
+
+def test_mesh_curves_circle():
+    m = curvemesh.mesh_curves(circle(50, 50, 40), edge_length=0.1)
+    assert m.order == 3 and m.triangles.shape[1] == 10
+    primary = m.line_tags == "primary"
+    assert primary.any()
+    assert set(m.line_curves[primary]) == {0, 1, 2, 3}
+    # Every node of a primary line lies on the circle (the cubics' own error is 2.7e-4 r).
+    r = np.hypot(*(m.nodes[m.lines[primary]].reshape(-1, 2) - 50).T)
+    assert np.allclose(r, 40, rtol=3e-4)
+    assert curvemesh.check(m)["invalid"] == 0
+
+
+def test_mesh_curves_as_the_readers_curves(tmp_path):
+    """The circle's cubics as an array mesh as the same cubics drawn as an SVG path do."""
+    curves = np.array(circle(50, 50, 40))
+    d = f"M {curves[0, 0, 0]!r} {curves[0, 0, 1]!r} " + " ".join(
+        "C " + " ".join(f"{x!r} {y!r}" for x, y in c[1:]) for c in curves
+    )
+    svg = (
+        '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">'
+        f'<path d="{d}" fill="none" stroke="black"/></svg>'
+    )
+    a = curvemesh.mesh_curves(curves.tolist(), edge_length=0.1)
+    b = curvemesh.mesh(svg, edge_length=0.1)
+    a.write(tmp_path / "a.msh")
+    b.write(tmp_path / "b.msh")
+    assert (tmp_path / "a.msh").read_bytes() == (tmp_path / "b.msh").read_bytes()
+    assert np.array_equal(a.line_curves, b.line_curves)
+
+
+def test_mesh_curves_open_and_crossing():
+    curves = np.array(
+        [
+            [[0, 0], [30, 40], [60, -40], [100, 0]],
+            [[50, -30], [40, 0], [60, 10], [50, 30]],
+            [[10, 20], [30, 20], [70, 20], [90, 20]],
+        ],
+        dtype=np.float32,
+    )
+    m = curvemesh.mesh_curves(curves, edge_length=0.05)
+    assert curvemesh.check(m)["invalid"] == 0
+    assert set(m.line_curves[m.line_curves >= 0]) <= {0, 1, 2}
+    linear = curvemesh.mesh_curves(curves, linear=True)
+    assert linear.triangles.shape[1] == 3 and linear.lines.shape[1] == 2
+
+
+@pytest.mark.parametrize("shape", [(4, 2), (1, 3, 2), (2, 4, 3), (1, 4, 2, 1), (4,)])
+def test_mesh_curves_wrong_shape(shape):
+    with pytest.raises(ValueError, match=re.escape("(n, 4, 2)")):
+        curvemesh.mesh_curves(np.ones(shape))
+
+
+def test_mesh_curves_bad_values():
+    for bad in [float("nan"), float("inf"), -float("inf")]:
+        curves = np.array(circle(0, 0, 1))
+        curves[2, 1, 0] = bad
+        with pytest.raises(ValueError, match="not a finite number"):
+            curvemesh.mesh_curves(curves)
+    with pytest.raises(ValueError):
+        curvemesh.mesh_curves([[["a", "b"]] * 4])
+    with pytest.raises(ValueError):
+        curvemesh.mesh_curves(np.zeros((0, 4, 2)))
+
+
+def test_mesh_curves_takes_views():
+    curves = np.array(circle(50, 50, 40))
+    strided = np.zeros((8, 4, 2))
+    strided[::2] = curves
+    a = curvemesh.mesh_curves(strided[::2], edge_length=0.2)
+    b = curvemesh.mesh_curves(curves, edge_length=0.2)
+    assert np.array_equal(a.nodes, b.nodes) and np.array_equal(a.triangles, b.triangles)
+
+
+def test_docstrings():
+    for thing in [curvemesh, curvemesh.mesh, curvemesh.mesh_curves, curvemesh.check, curvemesh.Mesh,
+                  curvemesh.Mesh.write, curvemesh.Mesh.to_meshio]:
+        assert thing.__doc__ and len(thing.__doc__) > 40, thing
+    for name in ["order", "nodes", "triangles", "lines", "line_tags", "line_curves", "stats", "warnings"]:
+        assert getattr(curvemesh.Mesh, name).__doc__, name
+
+
+def test_path_like(examples, tmp_path):
+    class Where:
+        def __fspath__(self):
+            return str(examples / "square-with-hole.svg")
+
+    m = curvemesh.mesh(Where(), linear=True)
+    m.write(pathlib.PurePosixPath(tmp_path / "m.svg"))
+    assert (tmp_path / "m.svg").read_bytes().startswith(b"<?xml")

@@ -1,0 +1,136 @@
+"""Mesh.to_meshio(): the mesh meshio reads from our own .msh file, node order included; meshio
+writes it (Gmsh 4.1 and 2.2; VTU when linear) and reads back the same geometry."""
+import numpy as np
+import pytest
+
+import curvemesh
+
+meshio = pytest.importorskip("meshio")
+
+
+def cells_by_type(m):
+    """{cell type: sorted list of (physical tag, the cell's node coordinates in cell order)}:
+    the geometry, independent of node numbering and of cell order, dependent on node order."""
+    physical = m.cell_data.get("gmsh:physical")
+    out = {}
+    for b, block in enumerate(m.cells):
+        xyz = m.points[block.data]
+        if xyz.shape[-1] == 2:
+            xyz = np.concatenate([xyz, np.zeros(xyz.shape[:-1] + (1,))], axis=-1)
+        tags = physical[b] if physical is not None else np.zeros(len(block.data), dtype=int)
+        rows = out.setdefault(block.type, [])
+        rows += [(int(t), tuple(c.ravel().tolist())) for t, c in zip(tags, xyz)]
+    return {k: sorted(v) for k, v in out.items()}
+
+
+def assert_same_geometry(a, b, tags=True):
+    ga, gb = cells_by_type(a), cells_by_type(b)
+    assert set(ga) == set(gb)
+    for cell_type in ga:
+        if tags:
+            assert ga[cell_type] == gb[cell_type], cell_type
+        else:
+            assert [c for _, c in ga[cell_type]] == [c for _, c in gb[cell_type]], cell_type
+
+
+@pytest.fixture(scope="module", params=["curved", "linear"])
+def case(request, examples, tmp_path_factory):
+    linear = request.param == "linear"
+    m = curvemesh.mesh(examples / "overlapping-shapes.svg", linear=linear)
+    folder = tmp_path_factory.mktemp(request.param)
+    m.write(folder / "own.msh")
+    return m, folder, linear
+
+
+def test_to_meshio_is_our_msh_as_meshio_reads_it(case):
+    m, folder, linear = case
+    mine = m.to_meshio()
+    own = meshio.read(folder / "own.msh")
+    assert mine.points.shape == (len(m.nodes), 3) and np.all(mine.points[:, 2] == 0)
+    assert np.array_equal(mine.points, own.points)
+    line_type, triangle_type = ("line", "triangle") if linear else ("line4", "triangle10")
+    # Block for block, cell for cell, node for node: meshio's reading of our file.
+    assert [b.type for b in mine.cells] == [b.type for b in own.cells]
+    assert [b.type for b in mine.cells] == [line_type] * 3 + [triangle_type]
+    for a, b in zip(mine.cells, own.cells):
+        assert np.array_equal(a.data, b.data)
+    for key in ["gmsh:physical", "gmsh:geometrical"]:
+        for a, b in zip(mine.cell_data[key], own.cell_data[key]):
+            assert np.array_equal(a, b), key
+    # Nodes on the entities Gmsh would put them on; the file puts them all on surface 1.
+    assert np.all(own.point_data["gmsh:dim_tags"] == (2, 1))
+    dim_tags = mine.point_data["gmsh:dim_tags"]
+    on_lines = np.zeros(len(m.nodes), dtype=bool)
+    on_lines[m.lines.ravel()] = True
+    assert np.all(dim_tags[on_lines, 0] == 1) and np.all(dim_tags[~on_lines] == (2, 1))
+    for block, geometrical in zip(mine.cells, mine.cell_data["gmsh:geometrical"]):
+        if block.dim == 1:
+            assert np.any((dim_tags[:, 0] == 1) & (dim_tags[:, 1] == geometrical[0]))
+    assert set(mine.field_data) == set(own.field_data) == {"primary", "secondary", "boundary", "domain"}
+    for name in own.field_data:
+        assert list(mine.field_data[name]) == list(own.field_data[name])
+    assert_same_geometry(mine, own)
+    # The arrays: triangles as they are, lines grouped by tag (stably).
+    assert np.array_equal(mine.cells_dict[triangle_type], m.triangles)
+    by_tag = np.argsort([["primary", "secondary", "boundary"].index(t) for t in m.line_tags], kind="stable")
+    assert np.array_equal(mine.cells_dict[line_type], m.lines[by_tag])
+
+
+@pytest.mark.parametrize("file_format", ["gmsh", "gmsh22"])
+def test_meshio_writes_it_as_gmsh(case, file_format):
+    m, folder, _ = case
+    path = folder / f"meshio-{file_format}.msh"
+    meshio.write(path, m.to_meshio(), file_format=file_format)
+    assert_same_geometry(meshio.read(path), meshio.read(folder / "own.msh"))
+
+
+def test_meshio_writes_it_as_vtu(case):
+    m, folder, linear = case
+    if not linear:
+        with pytest.raises(Exception):  # meshio has no VTK type for "triangle10"
+            meshio.write(folder / "meshio.vtu", m.to_meshio())
+        return
+    meshio.write(folder / "meshio.vtu", m.to_meshio())
+    back = meshio.read(folder / "meshio.vtu")
+    assert_same_geometry(back, meshio.read(folder / "own.msh"))
+
+
+def test_our_vtu_has_the_same_triangles(case):
+    """Our own .vtu (VTK Lagrange triangles, whose node order for 10 nodes is Gmsh's) holds the
+    triangles of to_meshio() node for node."""
+    m, folder, linear = case
+    m.write(folder / "own.vtu")
+    vtu = meshio.read(folder / "own.vtu")
+    mine = m.to_meshio()
+    triangle_type = "triangle" if linear else "triangle10"
+    vtu_triangles = [b for b in vtu.cells if b.data.shape[1] == (3 if linear else 10)]
+    assert vtu_triangles
+    a = sorted(tuple(c.ravel()) for c in mine.points[mine.cells_dict[triangle_type]])
+    b = sorted(tuple(c.ravel()) for block in vtu_triangles for c in vtu.points[block.data])
+    assert a == b
+
+
+def test_curved_nodes_sit_where_gmsh_order_says(case):
+    """In Gmsh's (and meshio's) triangle10, nodes 3-8 are two per edge 0-1, 1-2, 2-0 and node 9
+    is inside: checked on the straight triangles, where they sit at thirds."""
+    m, _, linear = case
+    if linear:
+        return
+    t = m.nodes[m.triangles]
+    c0, c1, c2 = t[:, 0], t[:, 1], t[:, 2]
+    expect = np.stack([(2 * c0 + c1) / 3, (c0 + 2 * c1) / 3, (2 * c1 + c2) / 3, (c1 + 2 * c2) / 3,
+                       (2 * c2 + c0) / 3, (c2 + 2 * c0) / 3, (c0 + c1 + c2) / 3], axis=1)
+    size = np.linalg.norm(c1 - c0, axis=1)[:, None]
+    straight = np.all(np.linalg.norm(t[:, 3:] - expect, axis=2) < 1e-6 * size, axis=1)
+    assert straight.sum() > len(t) / 2  # most triangles are straight; on them the order holds
+
+
+def test_line_tags_in_cell_data(case):
+    m, _, _ = case
+    mine = m.to_meshio()
+    names = {v[0]: k for k, v in mine.field_data.items()}
+    lines = {}
+    for block, physical in zip(mine.cells, mine.cell_data["gmsh:physical"]):
+        if block.dim == 1:
+            lines.update({tuple(c): names[p] for c, p in zip(block.data, physical)})
+    assert lines == {tuple(c): t for c, t in zip(m.lines, m.line_tags)}

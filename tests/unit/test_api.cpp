@@ -1,0 +1,369 @@
+// The public C++ API (include/curvemesh/curvemesh.hpp): the arrays' shapes and ranges, the line
+// tags and the input curve under each line, files byte-identical to the command line's writers,
+// the errors it throws (kind and message), and the check on good and inverted meshes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <curvemesh/curvemesh.hpp>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include "pipeline/output.hpp"
+#include "pipeline/pipeline.hpp"
+#include "scratch_dir.hpp"
+
+namespace curvemesh {
+namespace {
+
+using testing_support::ScratchDir;
+
+const std::string kExamples = CURVEMESH_EXAMPLES;
+const std::string kShapes = kExamples + "/overlapping-shapes.svg";
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  EXPECT_TRUE(in.good()) << path;
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The kind and message of the Error `f` throws; fails the test when it throws none or another type.
+template <class F>
+std::pair<Error::Kind, std::string> error_of(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return {e.kind(), e.what()};
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "not a curvemesh::Error: " << e.what();
+    return {Error::Kind::internal, ""};
+  }
+  ADD_FAILURE() << "nothing thrown";
+  return {Error::Kind::internal, ""};
+}
+
+// A circle of radius r about (cx, cy) as four cubic arcs, the reader's way.
+std::vector<Curve> circle(double cx, double cy, double r) {
+  const double k = 4.0 / 3.0 * std::tan(M_PI / 8) * r;
+  const auto p = [&](double x, double y) { return std::array<double, 2>{cx + x, cy + y}; };
+  return {{p(r, 0), p(r, k), p(k, r), p(0, r)},
+          {p(0, r), p(-k, r), p(-r, k), p(-r, 0)},
+          {p(-r, 0), p(-r, -k), p(-k, -r), p(0, -r)},
+          {p(0, -r), p(k, -r), p(r, -k), p(r, 0)}};
+}
+
+std::array<double, 2> bezier_point(const Curve& c, double t) {
+  const double s = 1 - t, w[4] = {s * s * s, 3 * s * s * t, 3 * s * t * t, t * t * t};
+  std::array<double, 2> x{0, 0};
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 2; ++k) x[k] += w[i] * c[i][k];
+  return x;
+}
+
+// The distance from q to curve c: the best of 1000 samples, refined by golden-section search.
+double distance_to(const Curve& c, const std::array<double, 2>& q) {
+  const auto at = [&](double t) {
+    const auto x = bezier_point(c, t);
+    return std::hypot(x[0] - q[0], x[1] - q[1]);
+  };
+  const int n = 1000;
+  int best = 0;
+  for (int i = 1; i <= n; ++i)
+    if (at(double(i) / n) < at(double(best) / n)) best = i;
+  double a = std::max(0.0, (best - 1.0) / n), b = std::min(1.0, (best + 1.0) / n);
+  const double g = (std::sqrt(5.0) - 1) / 2;
+  for (int k = 0; k < 100; ++k) {
+    const double x1 = b - g * (b - a), x2 = a + g * (b - a);
+    (at(x1) < at(x2) ? b : a) = at(x1) < at(x2) ? x2 : x1;
+  }
+  return at((a + b) / 2);
+}
+
+void expect_well_formed(const Mesh& m, int order) {
+  const int per_triangle = order == 3 ? 10 : 3, per_line = order == 3 ? 4 : 2;
+  EXPECT_EQ(m.order(), order);
+  EXPECT_EQ(m.nodes_per_triangle(), per_triangle);
+  EXPECT_EQ(m.nodes_per_line(), per_line);
+  EXPECT_GT(m.triangle_count(), 0u);
+  EXPECT_GT(m.line_count(), 0u);
+  EXPECT_EQ(m.nodes().size(), m.node_count());
+  EXPECT_EQ(m.triangles().size(), m.triangle_count() * per_triangle);
+  EXPECT_EQ(m.lines().size(), m.line_count() * per_line);
+  EXPECT_EQ(m.line_tags().size(), m.line_count());
+  EXPECT_EQ(m.line_curves().size(), m.line_count());
+  const auto n = static_cast<std::int64_t>(m.node_count());
+  for (std::int64_t id : m.triangles()) ASSERT_TRUE(id >= 0 && id < n) << id;
+  for (std::int64_t id : m.lines()) ASSERT_TRUE(id >= 0 && id < n) << id;
+  for (const auto& [x, y] : m.nodes()) ASSERT_TRUE(std::isfinite(x) && std::isfinite(y));
+  // Every triangle's nodes distinct; every line's too.
+  for (std::size_t t = 0; t < m.triangle_count(); ++t) {
+    const std::set<std::int64_t> ids(m.triangles().begin() + t * per_triangle,
+                                     m.triangles().begin() + (t + 1) * per_triangle);
+    ASSERT_EQ(ids.size(), std::size_t(per_triangle)) << "triangle " << t;
+  }
+  std::set<LineTag> tags(m.line_tags().begin(), m.line_tags().end());
+  EXPECT_TRUE(tags.count(LineTag::boundary));
+  for (std::size_t l = 0; l < m.line_count(); ++l) {
+    if (m.line_tags()[l] == LineTag::boundary)
+      EXPECT_EQ(m.line_curves()[l], -1) << "line " << l;
+    else
+      EXPECT_GE(m.line_curves()[l], 0) << "line " << l;
+  }
+}
+
+TEST(Api, VersionAndTagNames) {
+  EXPECT_STREQ(version(), "0.1.0");
+  EXPECT_STREQ(tag_name(LineTag::primary), "primary");
+  EXPECT_STREQ(tag_name(LineTag::secondary), "secondary");
+  EXPECT_STREQ(tag_name(LineTag::boundary), "boundary");
+}
+
+TEST(Api, CurvedMeshArrays) {
+  const Mesh m = mesh_file(kShapes);
+  expect_well_formed(m, 3);
+  const std::set<LineTag> tags(m.line_tags().begin(), m.line_tags().end());
+  EXPECT_TRUE(tags.count(LineTag::primary));
+  EXPECT_TRUE(tags.count(LineTag::secondary));  // the crossings make some
+  EXPECT_NE(m.stats_json().find("\"curve\""), std::string::npos);
+  EXPECT_NE(m.stats_json().find("overlapping-shapes.svg"), std::string::npos);
+  EXPECT_TRUE(m.warnings().empty());
+}
+
+TEST(Api, LinearMeshArrays) {
+  Parameters p;
+  p.linear = true;
+  const Mesh m = mesh_file(kShapes, p);
+  expect_well_formed(m, 1);
+  EXPECT_EQ(m.stats_json().find("\"curve\""), std::string::npos);
+}
+
+// The same drawing through the API and through the pipeline as `curvemesh mesh` runs it: the
+// same arrays as high_order_mesh, and every file byte for byte the same.
+TEST(Api, SameMeshAndFilesAsTheCommandLine) {
+  const ScratchDir dir;
+  for (const bool linear : {false, true}) {
+    Parameters p;
+    p.linear = linear;
+    p.edge_length_rel = 0.04;
+    const Mesh m = mesh_file(kShapes, p);
+    const pipeline::Result r = pipeline::run(pipeline::Source::file(kShapes), p);
+    const io::HighOrderMesh h = pipeline::high_order_mesh(r);
+    ASSERT_EQ(m.node_count(), h.nodes.size());
+    for (std::size_t i = 0; i < h.nodes.size(); ++i) {
+      ASSERT_EQ(m.nodes()[i][0], h.nodes[i].x());
+      ASSERT_EQ(m.nodes()[i][1], h.nodes[i].y());
+    }
+    EXPECT_TRUE(
+        std::equal(m.triangles().begin(), m.triangles().end(), h.triangles.begin(), h.triangles.end()));
+    EXPECT_TRUE(std::equal(m.lines().begin(), m.lines().end(), h.lines.begin(), h.lines.end()));
+
+    const std::string tag = linear ? "linear" : "curved";
+    m.write(dir / (tag + "-api.msh"));
+    pipeline::write_msh(r, dir / (tag + "-cli.msh"));
+    m.write(dir / (tag + "-api22.msh"), 22);
+    pipeline::write_msh(r, dir / (tag + "-cli22.msh"), 22);
+    m.write(dir / (tag + "-api.vtu"));
+    pipeline::write_vtu(r, dir / (tag + "-cli.vtu"));
+    m.write(dir / (tag + "-api.svg"));
+    pipeline::write_svg(r, dir / (tag + "-cli.svg"));
+    for (const std::string ext : {".msh", "22.msh", ".vtu", ".svg"}) {
+      const std::string api = read_file(dir / (tag + "-api" + ext)),
+                        cli = read_file(dir / (tag + "-cli" + ext));
+      EXPECT_FALSE(api.empty()) << tag << ext;
+      EXPECT_TRUE(api == cli) << tag << ext << " differs";
+    }
+    // The extension is read without regard to case.
+    m.write(dir / (tag + "-upper.MSH"));
+    EXPECT_TRUE(read_file(dir / (tag + "-upper.MSH")) == read_file(dir / (tag + "-cli.msh")));
+  }
+}
+
+// Curves given by their control points: each primary line lies on the curve line_curves names.
+TEST(Api, LineCurvesNameTheCurveUnderEachLine) {
+  std::vector<Curve> curves = circle(0, 0, 1);
+  for (const Curve& c : circle(3, 0.5, 0.7)) curves.push_back(c);
+  for (const bool linear : {false, true}) {
+    Parameters p;
+    p.linear = linear;
+    const Mesh m = mesh_curves(curves, p);
+    expect_well_formed(m, linear ? 1 : 3);
+    EXPECT_NE(m.stats_json().find("<curves>"), std::string::npos);
+    std::set<std::int64_t> seen;
+    for (std::size_t l = 0; l < m.line_count(); ++l) {
+      if (m.line_tags()[l] == LineTag::boundary) continue;
+      const std::int64_t c = m.line_curves()[l];
+      ASSERT_TRUE(c >= 0 && c < std::int64_t(curves.size())) << c;
+      seen.insert(c);
+      if (m.line_tags()[l] != LineTag::primary) continue;
+      for (int k = 0; k < m.nodes_per_line(); ++k) {
+        const auto& q = m.nodes()[m.lines()[l * m.nodes_per_line() + k]];
+        EXPECT_LT(distance_to(curves[c], q), 1e-6) << "line " << l << " node " << k << " on curve " << c;
+      }
+    }
+    EXPECT_EQ(seen.size(), curves.size());  // every curve has lines on it
+  }
+}
+
+TEST(Api, BadSvgThrowsTheReadersMessage) {
+  auto [kind, message] = error_of([] { mesh_svg("<svg", {}, "bad.svg"); });
+  EXPECT_EQ(kind, Error::Kind::invalid_input);
+  EXPECT_EQ(message, "bad.svg: line 1: not well-formed XML: Error parsing start element tag");
+  std::tie(kind, message) =
+      error_of([] { mesh_svg("<svg xmlns='http://www.w3.org/2000/svg'><path d='M 0 0 L 1e999 0'/></svg>"); });
+  EXPECT_EQ(kind, Error::Kind::invalid_input);
+  EXPECT_EQ(message,
+            "<svg>: line 1, <path>: bad path data: number '1e999' is too large for a double at offset 8");
+  std::tie(kind, message) = error_of([] { mesh_file(kExamples + "/no-such-drawing.svg"); });
+  EXPECT_EQ(kind, Error::Kind::invalid_input);
+  EXPECT_NE(message.find("no-such-drawing.svg"), std::string::npos) << message;
+}
+
+TEST(Api, WarningsOfTheReader) {
+  const Mesh m =
+      mesh_svg("<svg xmlns='http://www.w3.org/2000/svg' width='10' height='10'><text>hi</text></svg>");
+  EXPECT_GT(m.triangle_count(), 0u);  // the canvas alone
+  ASSERT_EQ(m.warnings().size(), 2u);
+  EXPECT_NE(m.warnings()[0].find("<text>"), std::string::npos) << m.warnings()[0];
+  EXPECT_EQ(m.warnings()[1], "nothing is drawn; meshing the canvas alone");
+}
+
+TEST(Api, InvalidParametersAreRefused) {
+  Parameters p;
+  p.epsilon_rel = 1e-4;
+  auto [kind, message] = error_of([&] { mesh_file(kShapes, p); });
+  EXPECT_EQ(kind, Error::Kind::invalid_parameters);
+  EXPECT_EQ(message, "--epsilon (0.0001) must be at least --mu (0.001)");
+  p = Parameters{};
+  p.edge_length_rel = std::numeric_limits<double>::quiet_NaN();
+  std::tie(kind, message) = error_of([&] { mesh_curves(circle(0, 0, 1), p); });
+  EXPECT_EQ(kind, Error::Kind::invalid_parameters);
+  EXPECT_EQ(message, "--edge-length (nan) must be a positive number");
+}
+
+TEST(Api, CurvesThatAreNotFiniteAreRefused) {
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  for (const double bad : {nan, inf, -inf}) {
+    std::vector<Curve> curves = circle(0, 0, 1);
+    curves[2][1][1] = bad;
+    const auto [kind, message] = error_of([&] { mesh_curves(curves); });
+    EXPECT_EQ(kind, Error::Kind::invalid_input);
+    EXPECT_EQ(message.find("<curves>: curve 2 has a coordinate that is not a finite number"), 0u) << message;
+  }
+  // Finite, but too large for the drawing's diagonal to be a double.
+  auto [kind, message] = error_of([] { mesh_curves(circle(0, 0, 1e200)); });
+  EXPECT_EQ(kind, Error::Kind::invalid_input);
+  EXPECT_EQ(message, "<curves>: coordinates too large: the drawing's diagonal overflows a double");
+  // Nothing at all.
+  std::tie(kind, message) = error_of([] { mesh_curves({}); });
+  EXPECT_EQ(kind, Error::Kind::invalid_input);
+  EXPECT_NE(message.find("nothing to mesh"), std::string::npos) << message;
+}
+
+TEST(Api, CheckCertifiesTheMeshAndItsFile) {
+  const ScratchDir dir;
+  for (const bool linear : {false, true}) {
+    Parameters p;
+    p.linear = linear;
+    const Mesh m = mesh_file(kExamples + "/square-with-hole.svg", p);
+    const CheckReport r = check(m);
+    EXPECT_EQ(r.order, linear ? 1 : 3);
+    EXPECT_EQ(r.triangles, m.triangle_count());
+    EXPECT_EQ(r.invalid, 0u);
+    EXPECT_EQ(r.undecided, 0u);
+    EXPECT_GT(r.min_scaled_jacobian, 0);
+    EXPECT_LE(r.min_scaled_jacobian, 1);
+    m.write(dir / "m.msh");
+    const CheckReport f = check_file(dir / "m.msh");
+    EXPECT_EQ(f.order, r.order);
+    EXPECT_EQ(f.triangles, r.triangles);
+    EXPECT_EQ(f.invalid, 0u);
+    EXPECT_EQ(f.min_scaled_jacobian, r.min_scaled_jacobian);
+  }
+}
+
+// A cubic triangle folded by an edge node pushed beyond the opposite side, and the same triangle
+// straight (tests/cli/curved_test.py has the same two).
+TEST(Api, CheckFileFindsAnInvertedElement) {
+  const ScratchDir dir;
+  const auto write = [&](const std::string& name, const std::array<double, 2>& ninth) {
+    std::ofstream f(dir / name);
+    const double third = 1.0 / 3, two = 2.0 / 3;
+    const std::array<std::array<double, 2>, 10> nodes{{{0, 0},
+                                                       {1, 0},
+                                                       {0, 1},
+                                                       {third, 0},
+                                                       {two, 0},
+                                                       {two, third},
+                                                       {third, two},
+                                                       {0, two},
+                                                       ninth,
+                                                       {third, third}}};
+    f.precision(17);
+    f << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n10\n";
+    for (int i = 0; i < 10; ++i) f << i + 1 << " " << nodes[i][0] << " " << nodes[i][1] << " 0\n";
+    f << "$EndNodes\n$Elements\n1\n1 21 2 4 1 1 2 3 4 5 6 7 8 9 10\n$EndElements\n";
+  };
+  write("folded.msh", {0.8, 0.8});
+  write("straight.msh", {0, 1.0 / 3});
+  const CheckReport folded = check_file(dir / "folded.msh");
+  EXPECT_EQ(folded.order, 3);
+  EXPECT_EQ(folded.triangles, 1u);
+  EXPECT_EQ(folded.invalid, 1u);
+  EXPECT_LT(folded.min_scaled_jacobian, 0);
+  const CheckReport straight = check_file(dir / "straight.msh");
+  EXPECT_EQ(straight.invalid, 0u);
+  EXPECT_GT(straight.min_scaled_jacobian, 0.99);
+
+  {
+    std::ofstream f(dir / "broken.msh");
+    f << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n";
+  }
+  auto [kind, message] = error_of([&] { check_file(dir / "broken.msh"); });
+  EXPECT_EQ(kind, Error::Kind::invalid_input);
+  EXPECT_EQ(message, dir / "broken.msh" + ": line 6: $Nodes: not closed: the file ends inside it");
+  std::tie(kind, message) = error_of([&] { check_file(dir / "missing.msh"); });
+  EXPECT_EQ(kind, Error::Kind::invalid_input);
+  EXPECT_EQ(message, dir / "missing.msh" + ": cannot be read");
+}
+
+TEST(Api, WriteFailures) {
+  const ScratchDir dir;
+  Parameters p;
+  p.linear = true;
+  const Mesh m = mesh_file(kExamples + "/square-with-hole.svg", p);
+  auto [kind, message] = error_of([&] { m.write(dir / "no-such-folder/m.msh"); });
+  EXPECT_EQ(kind, Error::Kind::output);
+  EXPECT_NE(message.find("no-such-folder/m.msh"), std::string::npos) << message;
+  std::tie(kind, message) = error_of([&] { m.write(dir / "m.obj"); });
+  EXPECT_EQ(kind, Error::Kind::output);
+  EXPECT_NE(message.find("m.obj"), std::string::npos) << message;
+  std::tie(kind, message) = error_of([&] { m.write(dir / "m.msh", 40); });
+  EXPECT_EQ(kind, Error::Kind::invalid_parameters);
+  EXPECT_EQ(message, "--msh-version (40) must be 41 or 22");
+  EXPECT_FALSE(std::ifstream(dir / "m.msh").good());  // nothing written
+}
+
+TEST(Api, DefaultConstructedMeshIsEmpty) {
+  const Mesh m;
+  EXPECT_EQ(m.order(), 0);
+  EXPECT_EQ(m.node_count(), 0u);
+  EXPECT_EQ(m.triangle_count(), 0u);
+  EXPECT_EQ(m.line_count(), 0u);
+  EXPECT_TRUE(m.nodes().empty() && m.triangles().empty() && m.lines().empty() && m.line_tags().empty());
+  EXPECT_EQ(check(m).triangles, 0u);
+  const ScratchDir dir;
+  EXPECT_EQ(error_of([&] { m.write(dir / "m.msh"); }).first, Error::Kind::output);
+}
+
+TEST(Api, MeshesShareTheirData) {
+  const Mesh a = mesh_curves(circle(0, 0, 1));
+  const Mesh b = a;  // a copy shares the arrays
+  EXPECT_EQ(&a.nodes(), &b.nodes());
+  EXPECT_EQ(b.triangle_count(), a.triangle_count());
+}
+
+}  // namespace
+}  // namespace curvemesh
