@@ -3,7 +3,8 @@
 drawing (invalid-input, the others ok, exit 1), a time-out, a memory limit that is too small, a
 resumed run (skips, mtimes unchanged) and --force, shards that add up to the whole, list files,
 output names that would collide, forwarded mesh options, the report's schema, `curvemesh report`
-and its self-contained HTML page, usage errors and --help.
+and its self-contained HTML page, a report whose last line was cut short, usage errors and
+--help.
 
 usage: batch_test.py CURVEMESH_BINARY EXAMPLES_DIR
 """
@@ -267,6 +268,25 @@ r, _ = run("report", *[os.path.join(root, f"shard-{k}.jsonl") for k in (1, 3)],
 check("report: shards together", r.returncode == 0 and f"drawings: {whole_count}" in r.stdout, r.stdout + r.stderr)
 r, _ = run("report", write(os.path.join(root, "bad.jsonl"), '{"path": "x.svg"}\n'))
 check("report: a malformed report is refused (exit 1)", r.returncode == 1 and "bad.jsonl:1" in r.stderr, r.stderr)
+
+# --- A report cut short --------------------------------------------------------------------------
+# A report whose last line was being written when its batch died (a node failure on a shared file
+# system can cut it anywhere): that line is left out, with a warning; a bad line elsewhere is an error.
+good = [json.dumps(l) for l in read_report(os.path.join(out, "report.jsonl"))]
+cut = write(os.path.join(root, "cut.jsonl"), "\n".join(good[:-1]) + "\n" + good[-1][:40])
+r, _ = run("report", cut)
+check("cut-short last line: report succeeds", r.returncode == 0, r.stderr)
+check("cut-short last line: left out, and said so",
+      f"drawings: {len(good) - 1} " in r.stdout and "cut short" in r.stdout and "cut.jsonl:" in r.stderr,
+      r.stdout + r.stderr)
+r, _ = run("report", write(os.path.join(root, "unterminated.jsonl"), "\n".join(good)))
+check("a whole last line without its newline counts", r.returncode == 0 and f"drawings: {len(good)} " in r.stdout,
+      r.stdout + r.stderr)
+r, _ = run("report", write(os.path.join(root, "cut-middle.jsonl"), good[0][:40] + "\n" + "\n".join(good[1:]) + "\n"))
+check("a cut line before the last is an error (exit 1)", r.returncode == 1 and "cut-middle.jsonl:1" in r.stderr,
+      r.stderr)
+r, _ = run("report", write(os.path.join(root, "garbage-end.jsonl"), "\n".join(good) + "\n{garbage\n"))
+check("a bad last line that ends in a newline is an error (exit 1)", r.returncode == 1, r.stderr)
 
 # --- Usage errors and help ------------------------------------------------------------------------
 usage = {"shard out of range": [inputs, "--shard", "4/3"], "shard not K/N": [inputs, "--shard", "x"],
