@@ -11,6 +11,8 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <map>
+#include <set>
 #include <system_error>
 #include <utility>
 
@@ -41,6 +43,16 @@ void write_whole(int fd, const std::string& text) {
   }
 }
 
+// What `io::write_file_atomically` leaves when killed between writing and renaming: NAME.tmp.PID.
+// Returns NAME, or nothing for other files.
+std::optional<std::string> temporary_of(const std::string& file) {
+  const auto at = file.rfind(".tmp.");
+  if (at == std::string::npos || at == 0 || at + 5 == file.size() ||
+      file.find_first_not_of("0123456789", at + 5) != std::string::npos)
+    return std::nullopt;
+  return file.substr(0, at);
+}
+
 }  // namespace
 
 Batch::Batch(const Settings& settings, std::vector<Drawing> drawings, std::vector<std::string> forwarded,
@@ -69,6 +81,7 @@ int Batch::run(const fs::path& report_path) {
   if (report_fd_ < 0)
     throw BatchError(kInvalidInput, "curvemesh: " + report_path.string() + ": cannot write the report (" +
                                         std::strerror(errno) + ")");
+  remove_stale_temporaries();
 
   std::vector<std::size_t> pending;
   for (std::size_t i = 0; i < drawings_.size(); ++i) {
@@ -95,6 +108,26 @@ int Batch::run(const fs::path& report_path) {
   progress_.end();
   write_sorted_report();
   return interrupted_;
+}
+
+// A process killed between writing a file and renaming it into place (by the time limit, by a
+// scheduler, by its node going down) leaves NAME.tmp.PID beside it. Nothing reads those, but a
+// half-written mesh can be large, so the ones of this run's drawings and of its report go before it
+// starts. Other files are left alone: shards sharing OUTDIR remove their own.
+void Batch::remove_stale_temporaries() const {
+  std::map<fs::path, std::set<std::string>> ours;  // folder -> the names whose temporaries are ours
+  for (const Drawing& d : drawings_)
+    for (const fs::path& p : {d.msh, d.stats}) ours[p.parent_path()].insert(p.filename().string());
+  ours[report_path_.parent_path()].insert(report_path_.filename().string());
+  for (const auto& [folder, names] : ours) {
+    std::error_code ec;
+    for (fs::directory_iterator it(folder.empty() ? fs::path(".") : folder, ec), end; !ec && it != end;
+         it.increment(ec)) {
+      const auto name = temporary_of(it->path().filename().string());
+      std::error_code ignored;
+      if (name && names.count(*name)) fs::remove(it->path(), ignored);
+    }
+  }
 }
 
 void Batch::start_mesh(std::size_t i) {

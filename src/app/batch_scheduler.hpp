@@ -68,6 +68,7 @@ class Batch {
     Outcome mesh;  // the mesh child's outcome, once checking
   };
 
+  void remove_stale_temporaries() const;
   void start_mesh(std::size_t i);
   void reap();
   int interruption_of(const Outcome& o) const;

@@ -368,7 +368,7 @@ if p:
           and "SIGTERM" in l.get("message", ""), l)
 
 # SIGKILL (a scheduler after its grace time, the out-of-memory killer): the children go too, the
-# report written so far is whole lines, and the next run completes.
+# report written so far is whole lines, and the next run removes the temporaries and completes.
 sigkill_out = os.path.join(root, "out-sigkill")
 p, child = start_until_heavy(sigkill_out)
 if p:
@@ -385,12 +385,22 @@ if p:
     r, _ = run("report", report_path)
     check("SIGKILL: curvemesh report reads it", r.returncode == 0 and f"drawings: {len(example_names)}" in r.stdout,
           r.stdout + r.stderr)
+    # What a process killed between writing and renaming leaves, ours and another shard's.
+    ours = [os.path.join(sigkill_out, n) for n in ("zz-heavy.msh.tmp.4242", "zz-heavy.json.tmp.77",
+                                                   "report.jsonl.tmp.4243")]
+    theirs = [os.path.join(sigkill_out, n) for n in ("other.msh.tmp.4242", "zz-heavy.msh.tmp.x")]
+    for t in ours + theirs:
+        write(t, "half a file")
     r, _ = run("batch", killed_in, "-o", sigkill_out, "--jobs", "1", "--timeout", "0.5")
     l = by_path(read_report(report_path))
     check("SIGKILL, run again: the finished drawings are skipped",
           all(l.get(os.path.join(killed_in, n), {}).get("status") == "skipped" for n in example_names), l)
     check("SIGKILL, run again: the stopped drawing is redone", l.get(killed_heavy, {}).get("status") == "timeout",
           l.get(killed_heavy))
+    check("SIGKILL, run again: its stale temporaries and the report's are removed",
+          not any(os.path.exists(t) for t in ours), [t for t in ours if os.path.exists(t)])
+    check("SIGKILL, run again: files that are not this run's temporaries stay",
+          all(os.path.exists(t) for t in theirs), theirs)
 
 # --- A report cut short --------------------------------------------------------------------------
 # A report whose last line was being written when its batch died (a node failure on a shared file
