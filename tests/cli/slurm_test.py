@@ -13,7 +13,7 @@ array: the merged report equals a local `curvemesh batch` of the same inputs (st
 triangles). Then a second submission with a drawing that takes a while: its task is cancelled
 (scancel) while meshing it, which leaves whole report lines, no line, mesh or temporary for the
 stopped drawing and no crash; submitting again meshes only that drawing and completes the run.
-Exits 77 (ctest's skip) with the reason when Slurm cannot start here; the daemons are stopped by
+Last, scripts/slurm-compare on the same inputs (its own cluster): both runs agree. Exits 77 (ctest's skip) with the reason when Slurm cannot start here; the daemons are stopped by
 their pids whatever happens.
 """
 import json
@@ -312,6 +312,13 @@ elif mode == "--cluster":
         print(f"SKIP: Slurm cannot run here: {e}")
         sys.exit(SKIP)
     print(f"{time.monotonic() - started:.1f} s with the cluster, stopping included")
+    # scripts/slurm-compare (the README's measurement) on the same inputs, with a cluster of its own.
+    compare = os.path.normpath(os.path.join(here, "..", "..", "scripts", "slurm-compare"))
+    r = subprocess.run([compare, inputs, "--tasks", "2", "--jobs", "2", "--curvemesh", binary], capture_output=True,
+                       text=True, timeout=240, stdin=subprocess.DEVNULL)
+    check("slurm-compare: the plain and the Slurm run agree (exit 0)", r.returncode == 0
+          and "same report" in r.stdout and "Slurm's own:" in r.stdout, f"exit {r.returncode}: {r.stdout}{r.stderr}")
+    print(r.stdout)
 else:
     sys.exit(f"usage: {sys.argv[0]} CURVEMESH EXAMPLES --script|--cluster")
 finish()
