@@ -21,6 +21,8 @@ packages=(
   openclipart-svg
   # peak-memory measurement in the corpus scripts
   time
+  # a one-node Slurm cluster for scripts/slurm-batch's test and scripts/slurm-compare
+  slurm-wlm munge
 )
 
 if [ $# -gt 0 ]; then

@@ -3,6 +3,7 @@
 #include "app/batch_child.hpp"
 
 #include <fcntl.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -76,6 +77,12 @@ std::string signal_name(int sig) {
       return "SIGFPE";
     case SIGILL:
       return "SIGILL";
+    case SIGTERM:
+      return "SIGTERM";
+    case SIGINT:
+      return "SIGINT";
+    case SIGHUP:
+      return "SIGHUP";
     default:
       return "signal " + std::to_string(sig);
   }
@@ -104,6 +111,7 @@ Child start_child(const std::vector<std::string>& args, const ChildSetup& setup)
     return c;
   }
   c.started = Clock::now();  // the clock starts here: the temporary files are not the drawing's time
+  const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) {
     c.start_errno = errno;
@@ -116,6 +124,10 @@ Child start_child(const std::vector<std::string>& args, const ChildSetup& setup)
     // the time limit kills whatever it started too, and the terminal's Ctrl-C reaches the batch
     // (which then kills its children) rather than each child separately.
     ::setpgid(0, 0);
+    // A batch killed outright (SIGKILL: a scheduler after its grace time, the out-of-memory killer)
+    // takes its children along rather than leaving them to write into OUTDIR unwatched.
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(127);
     ::sigprocmask(SIG_SETMASK, &setup.mask, nullptr);
     const int null = ::open("/dev/null", O_RDONLY);
     if (null >= 0) ::dup2(null, 0);

@@ -2,12 +2,17 @@
 // one ends.
 #include "app/batch_scheduler.hpp"
 
+#include <fcntl.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
+#include <map>
+#include <set>
 #include <system_error>
 #include <utility>
 
@@ -23,6 +28,29 @@ namespace {
 void remove_outputs(const Drawing& d, std::error_code& ec) {
   fs::remove(d.msh, ec);
   fs::remove(d.stats, ec);
+}
+
+// All of `text` in one write(2) when the kernel takes it so (it does for a regular file), so that a
+// process killed at any moment leaves whole lines behind. Errors are ignored: the report is written
+// again, whole, at the end.
+void write_whole(int fd, const std::string& text) {
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return;
+    done += static_cast<std::size_t>(n);
+  }
+}
+
+// What `io::write_file_atomically` leaves when killed between writing and renaming: NAME.tmp.PID.
+// Returns NAME, or nothing for other files.
+std::optional<std::string> temporary_of(const std::string& file) {
+  const auto at = file.rfind(".tmp.");
+  if (at == std::string::npos || at == 0 || at + 5 == file.size() ||
+      file.find_first_not_of("0123456789", at + 5) != std::string::npos)
+    return std::nullopt;
+  return file.substr(0, at);
 }
 
 }  // namespace
@@ -41,13 +69,19 @@ Batch::Batch(const Settings& settings, std::vector<Drawing> drawings, std::vecto
       settings.memory_limit_gb > 0 ? static_cast<rlim_t>(settings.memory_limit_gb * 1073741824.0) : 0;
 }
 
+Batch::~Batch() {
+  if (report_fd_ >= 0) ::close(report_fd_);
+}
+
 int Batch::run(const fs::path& report_path) {
   report_path_ = report_path;
   std::error_code ec;
   if (report_path.has_parent_path()) fs::create_directories(report_path.parent_path(), ec);
-  report_.open(report_path, std::ios::trunc);
-  if (!report_)
-    throw BatchError(kInvalidInput, "curvemesh: " + report_path.string() + ": cannot write the report");
+  report_fd_ = ::open(report_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (report_fd_ < 0)
+    throw BatchError(kInvalidInput, "curvemesh: " + report_path.string() + ": cannot write the report (" +
+                                        std::strerror(errno) + ")");
+  remove_stale_temporaries();
 
   std::vector<std::size_t> pending;
   for (std::size_t i = 0; i < drawings_.size(); ++i) {
@@ -59,21 +93,41 @@ int Batch::run(const fs::path& report_path) {
   }
   std::reverse(pending.begin(), pending.end());  // taken from the back, in sorted order
 
-  int interrupted = 0;
-  while (!interrupted && (!pending.empty() || !running_.empty())) {
+  while (!interrupted_ && (!pending.empty() || !running_.empty())) {
     while (running_.size() < settings_.jobs && !pending.empty()) {
       start_mesh(pending.back());
       pending.pop_back();
     }
     reap();
+    if (interrupted_) break;
     enforce_time_limits();
-    interrupted = wait_for_news();
+    interrupted_ = wait_for_news();
     progress_.tick();
   }
-  if (interrupted) kill_all();
+  if (interrupted_) kill_all();
   progress_.end();
   write_sorted_report();
-  return interrupted;
+  return interrupted_;
+}
+
+// A process killed between writing a file and renaming it into place (by the time limit, by a
+// scheduler, by its node going down) leaves NAME.tmp.PID beside it. Nothing reads those, but a
+// half-written mesh can be large, so the ones of this run's drawings and of its report go before it
+// starts. Other files are left alone: shards sharing OUTDIR remove their own.
+void Batch::remove_stale_temporaries() const {
+  std::map<fs::path, std::set<std::string>> ours;  // folder -> the names whose temporaries are ours
+  for (const Drawing& d : drawings_)
+    for (const fs::path& p : {d.msh, d.stats}) ours[p.parent_path()].insert(p.filename().string());
+  ours[report_path_.parent_path()].insert(report_path_.filename().string());
+  for (const auto& [folder, names] : ours) {
+    std::error_code ec;
+    for (fs::directory_iterator it(folder.empty() ? fs::path(".") : folder, ec), end; !ec && it != end;
+         it.increment(ec)) {
+      const auto name = temporary_of(it->path().filename().string());
+      std::error_code ignored;
+      if (name && names.count(*name)) fs::remove(it->path(), ignored);
+    }
+  }
 }
 
 void Batch::start_mesh(std::size_t i) {
@@ -118,7 +172,12 @@ void Batch::reap() {
     running_.erase(it);
     const double peak_mb = usage.ru_maxrss / 1024.0;  // kilobytes on Linux
     const Outcome o = outcome_of(job.child, status, peak_mb);
-    if (job.checking)
+    if (const int sig = interruption_of(o)) {
+      // Not the drawing's failure: it is left unfinished (no line, no outputs), to be redone.
+      std::error_code ec;
+      remove_outputs(drawings_[job.index], ec);
+      interrupted_ = sig;
+    } else if (job.checking)
       after_check(std::move(job), o);
     else
       after_mesh(std::move(job), o);
@@ -180,6 +239,24 @@ void Batch::after_check(Job job, const Outcome& o) {
          report_line(d, status, job.mesh.seconds, job.mesh.peak_mb, stats, check_invalid, message));
 }
 
+// A child killed by SIGTERM, SIGINT or SIGHUP was stopped from outside. When the batch gets one of
+// them too, within a second, the whole run is being stopped (a scheduler such as Slurm signals
+// every process of a job, in no set order; so does a shutdown): the drawing is unfinished, not
+// failed. Returns that signal; 0 when the child alone was stopped (then it is a crash, as before).
+int Batch::interruption_of(const Outcome& o) const {
+  if (o.start_errno || o.timed_out || !WIFSIGNALED(o.wait_status)) return 0;
+  const int sig = WTERMSIG(o.wait_status);
+  if (sig != SIGTERM && sig != SIGINT && sig != SIGHUP) return 0;
+  if (interrupted_) return interrupted_;
+  sigset_t stops;
+  sigemptyset(&stops);
+  for (int s : {SIGTERM, SIGINT, SIGHUP}) sigaddset(&stops, s);
+  const timespec one_second{1, 0};
+  siginfo_t info;
+  const int got = ::sigtimedwait(&stops, &info, &one_second);
+  return got > 0 ? got : 0;
+}
+
 void Batch::enforce_time_limits() {
   const auto now = Clock::now();
   for (Job& j : running_)
@@ -215,14 +292,16 @@ void Batch::kill_all() {
 }
 
 void Batch::finish(std::size_t i, Json line) {
-  // Written as they come, so a run that dies still leaves a report; sorted at the end.
-  report_ << line.dump() << "\n" << std::flush;
+  // Written as they come, each line in one write, so a run that dies, even by SIGKILL, still leaves
+  // a report of whole lines; sorted at the end.
+  write_whole(report_fd_, line.dump() + "\n");
   progress_.finished(line);
   lines_[i] = std::move(line);
 }
 
 void Batch::write_sorted_report() {
-  report_.close();
+  ::close(report_fd_);
+  report_fd_ = -1;
   std::string text;
   for (const auto& line : lines_)
     if (line) text += line->dump() + "\n";

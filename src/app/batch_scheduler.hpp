@@ -1,12 +1,12 @@
 #pragma once
 // The run of `curvemesh batch`: the drawings of one shard, N children at a time, each meshed and
 // then certified within its time limit, finished ones skipped, every drawing's line written to the
-// report as it ends and the whole report sorted at the end.
+// report as it ends and the whole report sorted at the end. Stopped from outside (SIGINT, SIGTERM,
+// SIGHUP), it kills its children, leaves their drawings unfinished and keeps the report of the rest.
 #include <signal.h>
 #include <sys/resource.h>
 
 #include <cstddef>
-#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -53,6 +53,9 @@ class Batch {
   // Runs every drawing; returns the signal that interrupted the run, or 0. Throws BatchError when
   // the report cannot be written.
   int run(const fs::path& report_path);
+  ~Batch();
+  Batch(const Batch&) = delete;
+  Batch& operator=(const Batch&) = delete;
 
   const Progress& progress() const { return progress_; }
 
@@ -65,8 +68,10 @@ class Batch {
     Outcome mesh;  // the mesh child's outcome, once checking
   };
 
+  void remove_stale_temporaries() const;
   void start_mesh(std::size_t i);
   void reap();
+  int interruption_of(const Outcome& o) const;
   void after_mesh(Job job, const Outcome& o);
   void after_check(Job job, const Outcome& o);
   void enforce_time_limits();
@@ -85,7 +90,8 @@ class Batch {
   std::vector<Job> running_;
   Progress progress_;
   fs::path report_path_;
-  std::ofstream report_;
+  int report_fd_ = -1;   // the report as lines come, one write(2) each
+  int interrupted_ = 0;  // the signal that stops the run
 };
 
 }  // namespace curvemesh::app::batch

@@ -120,7 +120,9 @@ Runner add_batch_command(CLI::App& app) {
       "--json` on the result), N at a time, so that a crash, a hang or running out of memory costs that "
       "drawing only. Outputs mirror the inputs under OUTDIR (X.msh and the statistics X.json). Finished "
       "drawings are skipped when run again. Writes one JSON line per drawing, in sorted order, to the "
-      "report (summarize it with `curvemesh report`); progress goes to stderr. Exit 0 when every "
+      "report (summarize it with `curvemesh report`); progress goes to stderr. Stopped by SIGINT, SIGTERM "
+      "or SIGHUP (Ctrl-C, a scheduler's time limit or cancel), it kills its children, keeps the report "
+      "of the drawings that finished and ends by that signal; run it again to finish. Exit 0 when every "
       "drawing is ok or skipped, 1 when any failed, 2 on a usage error.");
   cmd->add_option("inputs", args->inputs,
                   "drawings to mesh: SVG or .poly files, folders (every *.svg below them, outputs mirroring "

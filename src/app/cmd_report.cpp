@@ -72,7 +72,7 @@ struct Cause {
 
 struct Summary {
   std::vector<Entry> entries;  // one per path, sorted by path
-  std::size_t duplicates = 0, succeeded = 0;
+  std::size_t duplicates = 0, cut_short = 0, succeeded = 0;
   std::vector<std::pair<std::string, std::size_t>> counts;  // by status, in batch::Status's order
   Distribution time, memory;                                // over the drawings that have a mesh
   std::vector<const Entry*> slowest;
@@ -85,18 +85,36 @@ class ReportError : public std::runtime_error {
 };
 
 // Every line of every report; a drawing listed twice (a re-run's report beside the first one's)
-// counts once, by its later line.
-std::vector<Entry> read_reports(const std::vector<std::string>& files, std::size_t& duplicates) {
+// counts once, by its later line. A last line that ends without a newline and is not JSON was being
+// written when its batch was killed (its node failed, say): it is left out and counted in `cut_short`,
+// and that drawing is missing, as if it had not run. Any other line that is not a report line is an
+// error.
+std::vector<Entry> read_reports(const std::vector<std::string>& files, std::size_t& duplicates,
+                                std::size_t& cut_short) {
   std::map<std::string, Entry> by_path;
   duplicates = 0;
+  cut_short = 0;
   for (const std::string& file : files) {
-    std::ifstream in(file);
+    std::ifstream in(file, std::ios::binary);
     if (!in) throw ReportError(file + ": cannot read");
-    std::string text;
-    for (int number = 1; std::getline(in, text); ++number) {
+    std::stringstream whole;
+    whole << in.rdbuf();
+    const std::string content = whole.str();
+    std::size_t start = 0;
+    for (int number = 1; start < content.size(); ++number) {
+      const std::size_t end = content.find('\n', start);
+      const bool terminated = end != std::string::npos;
+      const std::string text = content.substr(start, terminated ? end - start : std::string::npos);
+      start = terminated ? end + 1 : content.size();
       if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
       const std::string where = file + ":" + std::to_string(number) + ": ";
       const Json line = Json::parse(text, nullptr, false);
+      if (!terminated && (line.is_discarded() || !line.is_object())) {
+        std::cerr << "curvemesh: warning: " << where
+                  << "the last line is cut short (its batch was killed while writing it); left out\n";
+        ++cut_short;
+        continue;
+      }
       if (line.is_discarded() || !line.is_object()) throw ReportError(where + "not a JSON object");
       for (const char* key : {"path", "status"})
         if (!line.contains(key) || !line[key].is_string())
@@ -133,7 +151,7 @@ std::string cause_of(const Entry& e) {
 
 Summary summarize(const std::vector<std::string>& files) {
   Summary s;
-  s.entries = read_reports(files, s.duplicates);
+  s.entries = read_reports(files, s.duplicates, s.cut_short);
   std::map<std::string, std::size_t> counts;
   std::vector<double> times, memory;
   for (const Entry& e : s.entries) {
@@ -187,6 +205,9 @@ void print_text(const Summary& s, std::size_t files, std::ostream& out) {
   const std::size_t n = s.entries.size();
   out << "drawings: " << n << " (from " << files << (files == 1 ? " report" : " reports");
   if (s.duplicates) out << "; " << s.duplicates << " listed again, the later line counts";
+  if (s.cut_short)
+    out << "; " << s.cut_short << (s.cut_short == 1 ? " last line" : " last lines")
+        << " cut short by a killed batch, left out";
   out << ")\n";
   out << "success rate: " << s.succeeded << " of " << n << " (" << percent(s.succeeded, n)
       << ") ok or skipped\n";
@@ -379,6 +400,9 @@ std::string html_page(const Summary& s, const std::vector<std::string>& files) {
   h << ". Success rate: <strong>" << s.succeeded << " of " << n << " (" << percent(s.succeeded, n)
     << ")</strong> meshed and certified (ok or skipped).";
   if (s.duplicates) h << " " << s.duplicates << " drawings were listed again; the later line counts.";
+  if (s.cut_short)
+    h << " " << s.cut_short << (s.cut_short == 1 ? " report ends" : " reports end")
+      << " in a line cut short by a killed batch; left out.";
   h << "</p>\n";
 
   h << "<h2>By status</h2>\n<table>\n<tr><th>status</th><th class=\"n\">drawings</th><th "
@@ -458,7 +482,9 @@ Runner add_report_command(CLI::App& app) {
       "success rate (ok or skipped), drawings by status, median, p90, p99 and max of time and peak "
       "memory over the meshed drawings, the 10 slowest drawings, and the failures grouped by cause "
       "(status and message, with the drawing's path and numbers taken out). A drawing listed in more "
-      "than one line counts once, by its last line.");
+      "than one line counts once, by its last line. A report's last line that was cut short (its batch "
+      "was killed while writing it) is left out with a warning; any other line that is not a report "
+      "line is an error (exit 1).");
   cmd->add_option("reports", args->inputs, "report files (.jsonl) written by `curvemesh batch --report`")
       ->required();
   cmd->add_option("--html", args->html,

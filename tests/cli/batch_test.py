@@ -3,7 +3,9 @@
 drawing (invalid-input, the others ok, exit 1), a time-out, a memory limit that is too small, a
 resumed run (skips, mtimes unchanged) and --force, shards that add up to the whole, list files,
 output names that would collide, forwarded mesh options, the report's schema, `curvemesh report`
-and its self-contained HTML page, usage errors and --help.
+and its self-contained HTML page, a batch stopped from outside (SIGTERM to it and its children, as a
+scheduler sends it; SIGTERM to one child alone; SIGKILL) and run again, a report whose last line
+was cut short, usage errors and --help.
 
 usage: batch_test.py CURVEMESH_BINARY EXAMPLES_DIR
 """
@@ -267,6 +269,157 @@ r, _ = run("report", *[os.path.join(root, f"shard-{k}.jsonl") for k in (1, 3)],
 check("report: shards together", r.returncode == 0 and f"drawings: {whole_count}" in r.stdout, r.stdout + r.stderr)
 r, _ = run("report", write(os.path.join(root, "bad.jsonl"), '{"path": "x.svg"}\n'))
 check("report: a malformed report is refused (exit 1)", r.returncode == 1 and "bad.jsonl:1" in r.stderr, r.stderr)
+
+# --- A batch stopped from outside (a scheduler's time limit or scancel, a node going down) ----------
+# The examples plus the heavy drawing, named to come last and meshed one at a time, so that the
+# examples are done when it runs.
+killed_in = os.path.join(root, "killed-in")
+os.makedirs(killed_in)
+for n in example_names:
+    shutil.copy(os.path.join(examples, n), os.path.join(killed_in, n))
+shutil.copy(heavy, os.path.join(killed_in, "zz-heavy.svg"))
+killed_heavy = os.path.join(killed_in, "zz-heavy.svg")
+
+
+def children_of(pid):
+    found = []
+    for entry in os.listdir("/proc"):
+        try:
+            with open(f"/proc/{entry}/stat") as f:
+                stat = f.read()
+            with open(f"/proc/{entry}/cmdline", "rb") as f:
+                cmdline = f.read().split(b"\0")
+        except (OSError, ValueError):
+            continue
+        if entry.isdigit() and int(stat.rsplit(")", 1)[1].split()[1]) == pid:
+            found.append((int(entry), [a.decode(errors="replace") for a in cmdline]))
+    return found
+
+
+def start_until_heavy(out_dir, *extra):
+    """Starts a batch over killed_in; returns it and the pid of the child meshing the heavy drawing."""
+    p = subprocess.Popen([binary, "batch", killed_in, "-o", out_dir, "--jobs", "1", *extra],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and p.poll() is None:
+        mesh = [c for c, argv in children_of(p.pid) if "mesh" in argv and killed_heavy in argv]
+        if mesh:
+            time.sleep(0.3)  # into the meshing, past the start
+            return p, mesh[0]
+        time.sleep(0.05)
+    p.kill()
+    p.communicate()
+    check("killed: the heavy drawing's child started", False, "no child within 60 s")
+    return None, None
+
+
+def alive(pid):
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+def whole_lines(path):
+    with open(path) as f:
+        text = f.read()
+    lines = text.splitlines()
+    try:
+        parsed = [json.loads(l) for l in lines if l.strip()]
+    except json.JSONDecodeError:
+        parsed = None
+    return text.endswith("\n") or not text, parsed
+
+
+# Slurm signals every process of a job, the children too, in no set order: the child's death must
+# not be taken for the drawing's failure.
+killed_out = os.path.join(root, "out-killed")
+p, child = start_until_heavy(killed_out)
+if p:
+    os.kill(child, 15)
+    time.sleep(0.1)
+    os.kill(p.pid, 15)
+    _, err = p.communicate(timeout=60)
+    check("SIGTERM to the job: the batch dies of SIGTERM", p.returncode == -15, f"exit {p.returncode}: {err}")
+    check("SIGTERM to the job: says it was interrupted", "interrupted" in err, err)
+    ended, lines = whole_lines(os.path.join(killed_out, "report.jsonl"))
+    check("SIGTERM to the job: the report is whole lines", ended and lines is not None, lines)
+    lines = by_path(lines or [])
+    check("SIGTERM to the job: the finished drawings are in the report",
+          all(lines.get(os.path.join(killed_in, n), {}).get("status") == "ok" for n in example_names), lines)
+    check("SIGTERM to the job: no line for the drawing it stopped (unfinished, not failed)",
+          killed_heavy not in lines, lines.get(killed_heavy))
+    check("SIGTERM to the job: no mesh or statistics of it",
+          not any(os.path.exists(os.path.join(killed_out, "zz-heavy" + e)) for e in (".msh", ".json")))
+    check("SIGTERM to the job: no temporary left", not glob.glob(os.path.join(killed_out, "*.tmp.*")),
+          os.listdir(killed_out))
+
+# Someone else (an out-of-memory helper, say) stops the child alone: that drawing crashed, the
+# batch goes on.
+alone_out = os.path.join(root, "out-child-alone")
+p, child = start_until_heavy(alone_out)
+if p:
+    os.kill(child, 15)
+    _, err = p.communicate(timeout=60)
+    check("SIGTERM to the child alone: the batch finishes (exit 1)", p.returncode == 1, f"exit {p.returncode}: {err}")
+    l = by_path(read_report(os.path.join(alone_out, "report.jsonl"))).get(killed_heavy, {})
+    check("SIGTERM to the child alone: the drawing crashed", l.get("status") == "crash"
+          and "SIGTERM" in l.get("message", ""), l)
+
+# SIGKILL (a scheduler after its grace time, the out-of-memory killer): the children go too, the
+# report written so far is whole lines, and the next run removes the temporaries and completes.
+sigkill_out = os.path.join(root, "out-sigkill")
+p, child = start_until_heavy(sigkill_out)
+if p:
+    p.kill()
+    p.communicate(timeout=60)
+    deadline = time.monotonic() + 10
+    while alive(child) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    check("SIGKILL: the child meshing a drawing dies with the batch", not alive(child), child)
+    report_path = os.path.join(sigkill_out, "report.jsonl")
+    ended, lines = whole_lines(report_path)
+    check("SIGKILL: the report written so far is whole lines", ended and lines is not None
+          and {l["path"] for l in lines} == {os.path.join(killed_in, n) for n in example_names}, lines)
+    r, _ = run("report", report_path)
+    check("SIGKILL: curvemesh report reads it", r.returncode == 0 and f"drawings: {len(example_names)}" in r.stdout,
+          r.stdout + r.stderr)
+    # What a process killed between writing and renaming leaves, ours and another shard's.
+    ours = [os.path.join(sigkill_out, n) for n in ("zz-heavy.msh.tmp.4242", "zz-heavy.json.tmp.77",
+                                                   "report.jsonl.tmp.4243")]
+    theirs = [os.path.join(sigkill_out, n) for n in ("other.msh.tmp.4242", "zz-heavy.msh.tmp.x")]
+    for t in ours + theirs:
+        write(t, "half a file")
+    r, _ = run("batch", killed_in, "-o", sigkill_out, "--jobs", "1", "--timeout", "0.5")
+    l = by_path(read_report(report_path))
+    check("SIGKILL, run again: the finished drawings are skipped",
+          all(l.get(os.path.join(killed_in, n), {}).get("status") == "skipped" for n in example_names), l)
+    check("SIGKILL, run again: the stopped drawing is redone", l.get(killed_heavy, {}).get("status") == "timeout",
+          l.get(killed_heavy))
+    check("SIGKILL, run again: its stale temporaries and the report's are removed",
+          not any(os.path.exists(t) for t in ours), [t for t in ours if os.path.exists(t)])
+    check("SIGKILL, run again: files that are not this run's temporaries stay",
+          all(os.path.exists(t) for t in theirs), theirs)
+
+# --- A report cut short --------------------------------------------------------------------------
+# A report whose last line was being written when its batch died (a node failure on a shared file
+# system can cut it anywhere): that line is left out, with a warning; a bad line elsewhere is an error.
+good = [json.dumps(l) for l in read_report(os.path.join(out, "report.jsonl"))]
+cut = write(os.path.join(root, "cut.jsonl"), "\n".join(good[:-1]) + "\n" + good[-1][:40])
+r, _ = run("report", cut)
+check("cut-short last line: report succeeds", r.returncode == 0, r.stderr)
+check("cut-short last line: left out, and said so",
+      f"drawings: {len(good) - 1} " in r.stdout and "cut short" in r.stdout and "cut.jsonl:" in r.stderr,
+      r.stdout + r.stderr)
+r, _ = run("report", write(os.path.join(root, "unterminated.jsonl"), "\n".join(good)))
+check("a whole last line without its newline counts", r.returncode == 0 and f"drawings: {len(good)} " in r.stdout,
+      r.stdout + r.stderr)
+r, _ = run("report", write(os.path.join(root, "cut-middle.jsonl"), good[0][:40] + "\n" + "\n".join(good[1:]) + "\n"))
+check("a cut line before the last is an error (exit 1)", r.returncode == 1 and "cut-middle.jsonl:1" in r.stderr,
+      r.stderr)
+r, _ = run("report", write(os.path.join(root, "garbage-end.jsonl"), "\n".join(good) + "\n{garbage\n"))
+check("a bad last line that ends in a newline is an error (exit 1)", r.returncode == 1, r.stderr)
 
 # --- Usage errors and help ------------------------------------------------------------------------
 usage = {"shard out of range": [inputs, "--shard", "4/3"], "shard not K/N": [inputs, "--shard", "x"],
