@@ -80,23 +80,27 @@ def test_errors_in_threads(examples):
 
 @pytest.mark.timing
 def test_four_threads_take_less_wall_time(examples):
-    """Four drawings of about 0.5 to 1 s each: four threads against one after another. Best of
-    two rounds each, so that a moment's load elsewhere on the machine does not decide it."""
+    """Four drawings of about 0.7 s each: four threads against one after another, each the best of
+    up to three rounds, so that a moment's load elsewhere on the machine does not decide it (ctest
+    runs this test alone: RUN_SERIAL)."""
     cores = len(os.sched_getaffinity(0))
     if cores < 2:
         pytest.skip("one core: threads cannot run in parallel")
     jobs = [(examples / f"{name}.svg", {"edge_length": 0.008}) for name in SMALL]
     curvemesh.mesh(examples / "square-with-hole.svg")  # warm up: the library loaded and ready
     sequential, threaded = [], []
-    for _ in range(2):
+    for _ in range(3):
         reference, seconds = mesh_all(jobs, 0)
         sequential.append(seconds)
         meshes, seconds = mesh_all(jobs, 4)
         threaded.append(seconds)
         assert all(same(a, b) for a, b in zip(reference, meshes))
+        if min(threaded) < 0.8 * min(sequential):
+            break
     ratio = min(threaded) / min(sequential)
     print(
-        f"\none after another {min(sequential):.2f} s, four threads {min(threaded):.2f} s on {cores} cores: "
-        f"ratio {ratio:.2f}, speed-up {1 / ratio:.2f}x"
+        f"\none after another {min(sequential):.2f} s, four threads {min(threaded):.2f} s on {cores} cores "
+        f"(best of {len(threaded)}): ratio {ratio:.2f}, speed-up {1 / ratio:.2f}x; "
+        f"load average {os.getloadavg()[0]:.1f}"
     )
     assert ratio < 0.8
