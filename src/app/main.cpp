@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
   app.formatter(std::make_shared<CommandListFormatter>());
   app.footer("`curvemesh COMMAND --help` explains a command and every one of its options.");
   app.require_subcommand(1);
-  app.set_version_flag("--version", "curvemesh 0.1.0");
+  app.set_version_flag("--version", std::string("curvemesh ") + CURVEMESH_VERSION);
 
   std::map<const CLI::App*, Runner> runners;
   auto add = [&](Runner r) { runners[app.get_subcommands({}).back()] = std::move(r); };

@@ -169,8 +169,10 @@ def test_check(examples, run_cli, tmp_path):
         curvemesh.check(42)
 
 
-def test_version():
+def test_version(run_cli):
     assert re.fullmatch(r"\d+\.\d+\.\d+", curvemesh.__version__)
+    # One version: the module, the library and the command line say the same.
+    assert run_cli("--version").stdout.strip() == f"curvemesh {curvemesh.__version__}"
 
 
 def test_options_and_defaults():
