@@ -13,7 +13,7 @@ using curvemesh::bench::random_soup;
 
 void BM_FeatureProcessing(benchmark::State& state) {
   using namespace curvemesh;
-  const auto source = pipeline::Source::curves(random_soup(static_cast<int>(state.range(0)), 7));
+  const auto source = random_soup(static_cast<int>(state.range(0)), 7);
   std::size_t sections = 0;
   for (auto _ : state) {
     const auto f = pipeline::run(source, {}, pipeline::Stage::features).features;

@@ -12,8 +12,7 @@ namespace {
 using namespace curvemesh;
 
 void mesh_soup(benchmark::State& state, pipeline::Stage stop_after) {
-  const pipeline::Source source =
-      pipeline::Source::curves(bench::random_soup(static_cast<int>(state.range(0)), 7));
+  const pipeline::Source source = bench::random_soup(static_cast<int>(state.range(0)), 7);
   pipeline::Result r;
   for (auto _ : state) {
     r = pipeline::run(source, {}, {stop_after});

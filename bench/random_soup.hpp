@@ -6,22 +6,22 @@
 #include <cmath>
 #include <random>
 
-#include "svg/feature_soup.hpp"
+#include "pipeline/pipeline.hpp"
 
 namespace curvemesh::bench {
 
-inline svg::FeatureSoup random_soup(int n, unsigned seed) {
+// The drawing as the pipeline's input: n cubics, given by their control points.
+inline pipeline::Source random_soup(int n, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0), v(-1.0, 1.0);
   const double size = 3.0 / std::sqrt(double(n));
-  svg::FeatureSoup soup;
-  soup.sources.push_back({"path", "", 0, 1});
+  std::vector<std::array<geometry::Vec2, 4>> curves;
   for (int i = 0; i < n; ++i) {
     const geometry::Vec2 c(u(rng), u(rng));
     auto q = [&] { return geometry::Vec2(c.x() + size * v(rng), c.y() + size * v(rng)); };
-    soup.curves.push_back({{q(), q(), q(), q()}, 0, {}, {}, {}, {}});
+    curves.push_back({q(), q(), q(), q()});
   }
-  return soup;
+  return pipeline::Source::beziers(curves, "random soup");
 }
 
 }  // namespace curvemesh::bench
