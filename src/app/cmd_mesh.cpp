@@ -11,7 +11,9 @@
 #include "app/commands.hpp"
 #include "app/mesh_options.hpp"
 #include "app/progress.hpp"
+#include "io/msh_writer.hpp"
 #include "io/output_file.hpp"
+#include "io/vtu_writer.hpp"
 #include "pipeline/output.hpp"
 #include "pipeline/pipeline.hpp"
 
@@ -73,8 +75,11 @@ int run_mesh(const MeshArgs& args) {
   }
   try {
     const auto t = std::chrono::steady_clock::now();
-    pipeline::write_msh(r, args.output_msh, args.msh_version);
-    if (!args.output_vtu.empty()) pipeline::write_vtu(r, args.output_vtu);
+    // The plain high-order mesh, made once for both files (what pipeline::write_msh and
+    // write_vtu write).
+    const io::HighOrderMesh out = pipeline::high_order_mesh(r);
+    io::write_msh(out, args.output_msh, io::MshOptions{args.msh_version});
+    if (!args.output_vtu.empty()) io::write_vtu(out, args.output_vtu);
     if (!args.output_svg.empty()) pipeline::write_svg(r, args.output_svg);
     r.stats["seconds"]["write"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
     if (!args.output_stats.empty()) io::write_file_atomically(args.output_stats, r.stats.dump(1) + "\n");

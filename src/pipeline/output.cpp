@@ -45,11 +45,7 @@ std::vector<int> line_curves(const Result& r, const io::HighOrderMesh& mesh) {
 }
 
 void write_msh(const Result& r, const std::string& path, int version) {
-  require_mesh(r);
-  if (r.curved)
-    io::write_msh(io::curved_mesh(*r.curved), path, io::MshOptions{version});
-  else
-    io::write_msh(r.linear, path, io::MshOptions{version});
+  io::write_msh(high_order_mesh(r), path, io::MshOptions{version});
 }
 
 void write_vtu(const Result& r, const std::string& path) {
