@@ -49,6 +49,21 @@ struct SoupCurve {
   Paint right;
 };
 
+// How a shape's inside is decided from the winding number of its outline (SVG `fill-rule`).
+enum class FillRule : std::uint8_t { nonzero, evenodd };
+
+// One shape as the drawing fills it: an element drawn with a `fill` other than none (once per
+// <use> that draws it), with its outline as the renderer fills it: every subpath closed, an open
+// one by the straight line from its end back to its start. In paint order: a later layer is
+// painted over an earlier one.
+struct FillLayer {
+  int source = -1;  // index into FeatureSoup::sources
+  Paint fill;
+  FillRule rule = FillRule::nonzero;
+  std::vector<std::vector<CubicBezier>> subpaths;  // each a closed loop
+  Box2 bounds;                                     // of the control points of every subpath
+};
+
 struct SoupPoint {
   Vec2 p = Vec2::Zero();
   int source = -1;
@@ -59,6 +74,10 @@ struct FeatureSoup {
   std::vector<SoupPoint> points;
   std::vector<SourceElement> sources;
   std::vector<std::string> warnings;
+  // The filled shapes in paint order (what regions/ classifies the mesh's faces by), and how many
+  // drawn elements have a clip path or mask, which the fills do not apply.
+  std::vector<FillLayer> fills;
+  int clipped_elements = 0;
 
   // The root's canvas in user units: its viewBox, else (0, 0) to its width and height (100 when
   // missing). What a drawing with nothing drawn is meshed on.

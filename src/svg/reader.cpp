@@ -36,6 +36,7 @@ struct Context {
   Paint stroke;
   Paint color = Paint::rgb(0, 0, 0);
   Paint left, right;                    // data-color-left / data-color-right (none: not given)
+  FillRule fill_rule = FillRule::nonzero;
   bool visible = true;
   double viewport_width = 100, viewport_height = 100;  // for percentage lengths
   int depth = 0;
@@ -50,6 +51,7 @@ struct PendingSubpath {
   Vec2 start;
   int source;
   Paint stroke, fill, left, right;
+  bool filled = false;  // drawn with a fill (its FillLayer is made already)
 };
 
 class Reader {
@@ -222,7 +224,8 @@ void Reader::index_document(pugi::xml_node root) {
 
 bool Reader::apply_style(pugi::xml_node node, std::string_view tag, Context& ctx) {
   // Cascade, lowest precedence first: presentation attributes, style sheet, style attribute.
-  static constexpr const char* kProperties[] = {"fill", "stroke", "color", "display", "visibility"};
+  static constexpr const char* kProperties[] = {"fill",       "stroke",    "color", "display",
+                                                "visibility", "fill-rule", "clip-path", "mask"};
   Declarations decls;
   for (const char* p : kProperties)
     if (has_attr(node, p)) decls.emplace_back(p, attr(node, p));
@@ -239,7 +242,20 @@ bool Reader::apply_style(pugi::xml_node node, std::string_view tag, Context& ctx
       if (auto c = parse_color(value)) ctx.color = *c;
   for (const auto& [name, value] : decls) {
     if (name == "fill") {
-      if (auto p = parse_paint(value, ctx.color)) ctx.fill = *p;
+      if (auto p = parse_paint(value, ctx.color)) {
+        ctx.fill = *p;
+      } else if (trim_svg_whitespace(value) != "inherit") {
+        // Not a paint we can read: leave the element unfilled rather than guess its colour.
+        ctx.fill = Paint{};
+        warn_once("bad-fill:" + std::string(value), where(node) + ": fill=\"" + std::string(value) +
+                                                        "\" is not a paint this reader understands: left unfilled");
+      }
+    } else if (name == "fill-rule") {
+      const std::string_view v = trim_svg_whitespace(value);
+      if (v == "evenodd") ctx.fill_rule = FillRule::evenodd;
+      if (v == "nonzero") ctx.fill_rule = FillRule::nonzero;
+    } else if (name == "clip-path" || name == "mask") {
+      if (trim_svg_whitespace(value) != "none") ++soup_.clipped_elements;
     } else if (name == "stroke") {
       if (auto p = parse_paint(value, ctx.color)) ctx.stroke = *p;
     } else if (name == "display") {
@@ -546,6 +562,14 @@ void Reader::emit(pugi::xml_node node, std::string_view tag, const std::vector<S
                   const Context& ctx) {
   if (subpaths.empty()) return;
   const int source = source_of(node, tag);
+  Paint fill = ctx.fill;
+  // A paint server that is not in the document paints nothing (there is no fallback colour here).
+  if (fill.kind == Paint::Kind::url && !ids_.count(fill.url)) fill = Paint{};
+  FillLayer* layer = nullptr;
+  if (fill.kind != Paint::Kind::none) {
+    soup_.fills.push_back({source, fill, ctx.fill_rule, {}, {}});
+    layer = &soup_.fills.back();
+  }
   for (const Subpath& sp : subpaths) {
     PendingSubpath out;
     out.start = ctx.ctm.apply(sp.start);
@@ -565,6 +589,15 @@ void Reader::emit(pugi::xml_node node, std::string_view tag, const std::vector<S
       out.segments.push_back(m);
     }
     if (!std::isfinite(out.start.x()) || !std::isfinite(out.start.y())) fail(node, "coordinates overflow a double");
+    if (layer && !out.segments.empty()) {
+      // Filled as a closed loop: an open subpath by the line from its end back to its start.
+      std::vector<CubicBezier> loop = out.segments;
+      const Vec2 end = loop.back().p[3];
+      if (end != out.start) loop.push_back(CubicBezier::line(end, out.start));
+      for (const CubicBezier& c : loop) layer->bounds.add(c.control_bounds());
+      layer->subpaths.push_back(std::move(loop));
+      out.filled = true;
+    }
     curve_count_ += out.segments.size();
     if (curve_count_ > options_.max_curves)
       fail(node, "the document has more than " + std::to_string(options_.max_curves) + " curves");
@@ -636,6 +669,12 @@ FeatureSoup Reader::read() {
     }
     for (const CubicBezier& c : sp.segments)
       soup_.curves.push_back({c, sp.source, sp.stroke, sp.fill, sp.left, sp.right});
+    // The edge of the filled shape where the outline leaves it open (not drawn, but filled to).
+    if (options_.close_filled_subpaths && sp.filled && !sp.segments.empty()) {
+      const Vec2 end = sp.segments.back().p[3];
+      if ((end - sp.start).norm() > tolerance)
+        soup_.curves.push_back({CubicBezier::line(end, sp.start), sp.source, Paint{}, sp.fill, sp.left, sp.right});
+    }
   }
   pending_.clear();
   return std::move(soup_);

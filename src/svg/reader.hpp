@@ -14,6 +14,10 @@ struct ReadOptions {
   // Paths whose control points all lie within this distance, relative to the drawing's
   // bounding-box diagonal, become isolated points (paper §4: ε_m, from pipeline::Parameters).
   double degenerate_tolerance_rel = 0;
+  // Add the straight line that closes each open subpath of a filled element to the curves (not
+  // degenerate ones): the edge of the filled shape becomes a feature, so the mesh's faces follow
+  // the paint (regions/). Off, the curves are the drawn outlines alone.
+  bool close_filled_subpaths = false;
   // Refuse documents nested deeper than this (elements inside elements, <use> included).
   int max_depth = 512;
   // Refuse documents that expand (through <use>) to more curves or elements than this: a small

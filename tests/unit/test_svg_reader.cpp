@@ -196,7 +196,7 @@ TEST(Reader, ColoursFromAttributesStyleAndSheets) {
       "  <line x2='4' fill='currentColor' stroke='none'/>"  // currentColor
       "  <line x2='5' id='special' fill='url(#grad)'/>"     // id rule beats attribute
       "  <line x2='6' fill='url(#grad) red' stroke='rgb(1,2,3)'/>"
-      "  <line x2='7' fill='bogus'/>"                       // invalid: inherited value kept
+      "  <line x2='7' fill='bogus'/>"                       // unreadable: unfilled, with a warning
       "</g><line x2='8'/>"));                               // defaults: fill black, stroke none
   ASSERT_EQ(s.curves.size(), 8u);
   auto fs = [&](int i) { return s.curves[i].fill.to_string() + " " + s.curves[i].stroke.to_string(); };
@@ -206,8 +206,13 @@ TEST(Reader, ColoursFromAttributesStyleAndSheets) {
   EXPECT_EQ(fs(3), "#123456 none");
   EXPECT_EQ(fs(4), "#00ff00 #008000");
   EXPECT_EQ(fs(5), "url(#grad) #010203");
-  EXPECT_EQ(fs(6), "#ff0000 #008000");
+  // A browser would ignore the value and inherit red; but a value this reader cannot read may be
+  // a colour it does not know (hsl(), color()): not guessed, the element is left unfilled.
+  EXPECT_EQ(fs(6), "none #008000");
   EXPECT_EQ(fs(7), "#000000 none");
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("fill=\"bogus\""), std::string::npos);
+  EXPECT_NE(s.warnings[0].find("left unfilled"), std::string::npos);
 }
 
 TEST(Reader, SkippedKindsWarnOncePerKind) {
