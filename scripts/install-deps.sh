@@ -16,7 +16,7 @@ packages=(
   # the Python module and its tests
   pybind11-dev python3-dev python3-pytest
   # independent readers used by the tests
-  python3 python3-numpy python3-svgelements python3-meshio python3-gmsh
+  python3 python3-numpy python3-svgelements python3-meshio python3-gmsh librsvg2-bin
   # the drawings the corpus tests and scripts read (~8,100 SVGs, 180 MB)
   openclipart-svg
   # peak-memory measurement in the corpus scripts

@@ -22,8 +22,8 @@ namespace curvemesh::app {
 namespace {
 
 struct MeshArgs {
-  std::string input, output_msh, output_svg, output_vtu, output_stats, stop_after;
-  bool verbose = false, quiet = false;
+  std::string input, output_msh, output_svg, output_vtu, output_stats, stop_after, domain = "box";
+  bool verbose = false, quiet = false, regions = false;
   int msh_version = 41;
   pipeline::Parameters parameters;
 };
@@ -43,7 +43,9 @@ void summarize(const MeshArgs& args, const pipeline::Result& r, double seconds) 
                   mesh["triangles"].get<int>(), mesh["max_amips"].get<double>(),
                   mesh["min_angle_deg"].get<double>(), seconds);
   }
-  std::cout << "curvemesh: wrote " << args.output_msh << ": " << line << "\n";
+  std::cout << "curvemesh: wrote " << args.output_msh << ": " << line;
+  if (r.stats.contains("regions")) std::cout << ", " << r.stats["regions"].size() << " regions";
+  std::cout << "\n";
 }
 
 int run_mesh(const MeshArgs& args) {
@@ -56,6 +58,10 @@ int run_mesh(const MeshArgs& args) {
   }
   if (!parameters_valid(args.parameters)) return kUsage;
   if (args.verbose) run.log = &std::cerr;
+  run.regions = args.regions;
+  run.domain = args.domain == "filled"    ? regions::Domain::filled
+               : args.domain == "evenodd" ? regions::Domain::evenodd
+                                          : regions::Domain::box;
   run.warn = [&](const std::string& w) {
     std::cerr << "curvemesh: " << args.input << ": warning: " << w << "\n";
   };
@@ -79,7 +85,7 @@ int run_mesh(const MeshArgs& args) {
     // write_vtu write).
     const io::HighOrderMesh out = pipeline::high_order_mesh(r);
     io::write_msh(out, args.output_msh, io::MshOptions{args.msh_version});
-    if (!args.output_vtu.empty()) io::write_vtu(out, args.output_vtu);
+    if (!args.output_vtu.empty()) io::write_vtu(out, args.output_vtu, pipeline::cell_data(r));
     if (!args.output_svg.empty()) pipeline::write_svg(r, args.output_svg);
     r.stats["seconds"]["write"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
     if (!args.output_stats.empty()) io::write_file_atomically(args.output_stats, r.stats.dump(1) + "\n");
@@ -115,7 +121,22 @@ Runner add_mesh_command(CLI::App& app) {
       "--svg", args->output_svg,
       "also draw the mesh into this SVG (primary red, secondary green; curved edges as cubic Béziers)");
   cmd->add_option("--vtu", args->output_vtu,
-                  "also write the mesh as VTK XML (.vtu, Lagrange triangles; opens in ParaView)");
+                  "also write the mesh as VTK XML (.vtu, Lagrange triangles; opens in ParaView); with --regions "
+                  "or --domain each triangle's face and region as cell data");
+  cmd->add_flag(
+      "--regions", args->regions,
+      "tag the triangles by what the drawing paints on them, as a browser does (fill, fill-rule, transforms, "
+      "<use>, CSS; the topmost filled element wins): one physical surface per visible element, named by its id "
+      "(else TAG#INDEX, its index in the document), and 'background' where nothing is filled; --stats lists "
+      "them with fill, triangles and area; --svg fills each triangle with its element's colour. Opacity, "
+      "gradients and patterns do not change what covers what; clip paths and masks are ignored (with a "
+      "warning). The line closing an open filled subpath becomes a feature");
+  cmd->add_option("--domain", args->domain,
+                  "the part of the box to mesh: box (all of it), filled (what some filled element covers: the "
+                  "shape as it is seen, without the background) or evenodd (the even-odd inside of all curves); "
+                  "nodes no triangle uses are dropped, lines on the domain's border keep their tag")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"box", "filled", "evenodd"}));
   cmd->add_option("--stats", args->output_stats,
                   "write statistics as JSON: counts, min angle, max and mean AMIPS, seconds per stage");
   cmd->add_option(

@@ -1,6 +1,7 @@
 #include "app/solve_common.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <iostream>
 
 #include "app/commands.hpp"
@@ -21,10 +22,11 @@ void add_solve_options(CLI::App& cmd, SolveOptions& o, const std::string& defaul
   cmd.add_flag("--linear", o.linear,
                "solve on straight triangles: the same mesh with its straight (P1) map instead of the cubic one");
   cmd.add_option("--domain", o.domain,
-                 "where the problem lives: inside (regions enclosed by an odd number of curves, the even-odd rule), "
-                 "outside (the others), or all (the whole meshed box)")
+                 "where the problem lives: inside (regions enclosed by an odd number of curves, the even-odd rule; "
+                 "also called evenodd), outside (the others), filled (what the drawing's filled elements cover, "
+                 "as `mesh --domain filled`), or all (the whole meshed box; also called box)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"inside", "outside", "all"}));
+      ->check(CLI::IsMember({"inside", "evenodd", "outside", "filled", "all", "box"}));
   add_feature_options(cmd, o.parameters);
 }
 
@@ -38,6 +40,7 @@ std::optional<fem::MeshedDrawing> mesh_for_solving(const SolveOptions& o, const 
   curved.linear = false;  // --linear solves on the straight map of the curved mesh
   pipeline::RunOptions run;
   run.warn = [&](const std::string& w) { std::cerr << "curvemesh: " << o.input << ": warning: " << w << "\n"; };
+  run.regions = o.domain == "filled";  // the fills classified: meshed_drawing keeps them
   try {
     ProgressDisplay display(o.input);
     run.progress = [&](const pipeline::Progress& p) { display(p); };
@@ -57,21 +60,25 @@ std::optional<Problem> prepare_problem(const SolveOptions& o, int* exit_code) {
   const io::HighOrderMesh& whole = p.drawing.mesh;
   p.view = geometry::Box2();
   for (const geometry::Vec2& x : whole.nodes) p.view.add(x);
-  const fem::Regions regions = fem::find_regions(whole);
-  std::vector<char> keep(whole.triangle_count());
-  int kept = 0;
-  for (int t = 0; t < whole.triangle_count(); ++t) {
-    const int depth = regions.depth[regions.of_triangle[t]];
-    keep[t] = o.domain == "all" || (o.domain == "inside") == (depth % 2 == 1);
-    kept += keep[t];
+  // The same classification as `curvemesh mesh --domain` (regions/faces.hpp).
+  const regions::Classification& classified = p.drawing.classification;
+  std::vector<char> keep;
+  if (o.domain == "all" || o.domain == "box") keep = regions::domain_triangles(classified, regions::Domain::box);
+  if (o.domain == "filled") keep = regions::domain_triangles(classified, regions::Domain::filled);
+  if (o.domain == "inside" || o.domain == "evenodd" || o.domain == "outside") {
+    keep = regions::domain_triangles(classified, regions::Domain::evenodd);
+    if (o.domain == "outside")
+      for (char& k : keep) k = !k;
   }
+  const int kept = static_cast<int>(std::count(keep.begin(), keep.end(), 1));
   if (kept == 0) {
-    std::cerr << "curvemesh: " << o.input << ": the domain '" << o.domain
-              << "' is empty (no region of the drawing is enclosed by its curves); try --domain all\n";
+    std::cerr << "curvemesh: " << o.input << ": the domain '" << o.domain << "' is empty ("
+              << (o.domain == "filled" ? "nothing of the drawing is filled" : "no region of the drawing is enclosed by its curves")
+              << "); try --domain all\n";
     *exit_code = kInvalidInput;
     return std::nullopt;
   }
-  p.mesh = fem::submesh(whole, keep, &p.line_origin);
+  p.mesh = regions::submesh(whole, keep, &p.line_origin);
   if (o.linear) p.mesh = fem::straight_mesh(p.mesh);
   std::cerr << "curvemesh: meshed " << o.input << " in " << p.drawing.seconds << " s: " << p.mesh.triangle_count()
             << " triangles in the domain (" << (o.linear ? "straight" : "cubic") << " map)\n";
@@ -85,7 +92,7 @@ int write_outputs(const SolveOptions& o, const io::HighOrderMesh& mesh, const st
       // Only the nodes some triangle uses (a straight map leaves the cubic nodes unused).
       std::vector<int> node_origin;
       const io::HighOrderMesh used =
-          fem::submesh(mesh, std::vector<char>(mesh.triangle_count(), 1), nullptr, &node_origin);
+          regions::submesh(mesh, std::vector<char>(mesh.triangle_count(), 1), nullptr, &node_origin);
       std::vector<io::VtuPointArray> kept = arrays;
       for (io::VtuPointArray& a : kept) {
         std::vector<double> values;

@@ -86,9 +86,8 @@ ConvergenceResult poisson_convergence(const ConvergenceOptions& options) {
     parameters.edge_length_rel = l;
     const MeshedDrawing meshed = pipeline::mesh_drawing(pipeline::Source::svg(disk_svg(), "<disk>"), parameters);
     result.mesh_seconds += meshed.seconds;
-    const Regions regions = find_regions(meshed.mesh);
-    std::vector<char> keep(meshed.mesh.triangle_count());
-    for (int t = 0; t < meshed.mesh.triangle_count(); ++t) keep[t] = regions.depth[regions.of_triangle[t]] % 2 == 1;
+    const std::vector<char> keep =
+        regions::domain_triangles({regions::find_faces(meshed.mesh), {}}, regions::Domain::evenodd);
     const io::HighOrderMesh curved = submesh(meshed.mesh, keep);
     const io::HighOrderMesh straight = straight_mesh(curved);
     for (auto [mesh, series] : {std::pair{&curved, &result.p3_geometry}, std::pair{&straight, &result.p1_geometry}}) {

@@ -1,10 +1,9 @@
 #include "fem/domain.hpp"
-#include "fem/union_find.hpp"
+#include "mesh/union_find.hpp"
 
 #include <algorithm>
 #include <map>
 #include <numeric>
-#include <queue>
 #include <utility>
 
 namespace curvemesh::fem {
@@ -26,101 +25,6 @@ std::map<EdgeKey, std::vector<std::pair<int, int>>> edge_triangles(const io::Hig
 
 }  // namespace
 
-std::vector<std::array<int, 3>> edge_lines(const io::HighOrderMesh& mesh) {
-  std::map<EdgeKey, int> line_of;
-  for (int l = 0; l < mesh.line_count(); ++l) line_of.emplace(key(mesh.line(l)[0], mesh.line(l)[1]), l);
-  std::vector<std::array<int, 3>> out(mesh.triangle_count(), {-1, -1, -1});
-  for (int t = 0; t < mesh.triangle_count(); ++t) {
-    const auto tri = mesh.triangle(t);
-    for (int e = 0; e < 3; ++e) {
-      const auto it = line_of.find(key(tri[e], tri[(e + 1) % 3]));
-      if (it != line_of.end()) out[t][e] = it->second;
-    }
-  }
-  return out;
-}
-
-Regions find_regions(const io::HighOrderMesh& mesh) {
-  const int n = mesh.triangle_count();
-  const auto lines = edge_lines(mesh);
-  auto is_wall = [&](int l) {
-    return l >= 0 && (mesh.line_physical[l] == io::kPhysicalPrimary || mesh.line_physical[l] == io::kPhysicalSecondary);
-  };
-  UnionFind uf(n);
-  const auto triangles_on = edge_triangles(mesh);
-  for (const auto& [edge, ts] : triangles_on)
-    for (std::size_t i = 1; i < ts.size(); ++i)
-      if (!is_wall(lines[ts[0].first][ts[0].second])) uf.unite(ts[0].first, ts[i].first);
-  Regions r;
-  r.of_triangle.assign(n, -1);
-  std::map<int, int> index;  // root -> region, in order of first triangle
-  for (int t = 0; t < n; ++t) {
-    auto [it, inserted] = index.try_emplace(uf.find(t), static_cast<int>(index.size()));
-    r.of_triangle[t] = it->second;
-  }
-  const int count = static_cast<int>(index.size());
-  // Region adjacency across walls; depth by breadth-first search from the border regions.
-  std::vector<std::vector<int>> next(count);
-  std::vector<char> border(count, 0);
-  for (const auto& [edge, ts] : triangles_on) {
-    if (ts.size() == 1) border[r.of_triangle[ts[0].first]] = 1;
-    for (std::size_t i = 1; i < ts.size(); ++i) {
-      const int a = r.of_triangle[ts[0].first], b = r.of_triangle[ts[i].first];
-      if (a != b) next[a].push_back(b), next[b].push_back(a);
-    }
-  }
-  r.depth.assign(count, -1);
-  std::queue<int> queue;
-  for (int i = 0; i < count; ++i)
-    if (border[i]) r.depth[i] = 0, queue.push(i);
-  while (!queue.empty()) {
-    const int i = queue.front();
-    queue.pop();
-    for (int j : next[i])
-      if (r.depth[j] < 0) r.depth[j] = r.depth[i] + 1, queue.push(j);
-  }
-  for (int& d : r.depth)
-    if (d < 0) d = 0;  // not reachable from the border (no border at all): treat as outside
-  return r;
-}
-
-io::HighOrderMesh submesh(const io::HighOrderMesh& mesh, const std::vector<char>& keep, std::vector<int>* line_origin,
-                          std::vector<int>* node_origin) {
-  if (line_origin) line_origin->clear();
-  if (node_origin) node_origin->clear();
-  io::HighOrderMesh out;
-  out.order = mesh.order;
-  out.physical_names = mesh.physical_names;
-  std::vector<int> renumber(mesh.nodes.size(), -1);
-  auto node = [&](int i) {
-    if (renumber[i] < 0) {
-      renumber[i] = static_cast<int>(out.nodes.size());
-      out.nodes.push_back(mesh.nodes[i]);
-      if (node_origin) node_origin->push_back(i);
-    }
-    return renumber[i];
-  };
-  std::vector<int> buffer;
-  const auto lines = edge_lines(mesh);
-  std::vector<char> line_kept(mesh.line_count(), 0);
-  for (int t = 0; t < mesh.triangle_count(); ++t) {
-    if (!keep[t]) continue;
-    buffer.clear();
-    for (int i : mesh.triangle(t)) buffer.push_back(node(i));
-    out.add_triangle(buffer, mesh.triangle_physical[t]);
-    for (int l : lines[t])
-      if (l >= 0) line_kept[l] = 1;
-  }
-  for (int l = 0; l < mesh.line_count(); ++l) {
-    if (!line_kept[l]) continue;
-    buffer.clear();
-    for (int i : mesh.line(l)) buffer.push_back(node(i));
-    out.add_line(buffer, mesh.line_physical[l]);
-    if (line_origin) line_origin->push_back(l);
-  }
-  return out;
-}
-
 CutMesh cut_open(const io::HighOrderMesh& mesh, const std::vector<char>& cut) {
   const int n = mesh.triangle_count();
   const int size = mesh.triangle_size();
@@ -130,7 +34,7 @@ CutMesh cut_open(const io::HighOrderMesh& mesh, const std::vector<char>& cut) {
   auto is_cut = [&](int t, int e) { return lines[t][e] >= 0 && cut[lines[t][e]]; };
 
   // Corner copies: (triangle, corner) slots joined across edges that are not cut.
-  UnionFind uf(3 * n);
+  mesh::UnionFind uf(3 * n);
   for (const auto& [edge, ts] : triangles_on) {
     const auto [t0, e0] = ts[0];
     if (is_cut(t0, e0)) continue;

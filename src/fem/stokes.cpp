@@ -1,5 +1,5 @@
 #include "fem/stokes.hpp"
-#include "fem/union_find.hpp"
+#include "mesh/union_find.hpp"
 
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseQR>
@@ -26,7 +26,7 @@ constexpr double kRankThreshold = 1e-10;
 // around, and the pressure only up to a constant.
 std::vector<int> closed_part_references(const io::HighOrderMesh& mesh, const Space& pressure,
                                         const std::vector<VelocityCondition>& conditions) {
-  UnionFind parts(pressure.size());
+  mesh::UnionFind parts(pressure.size());
   for (int t = 0; t < mesh.triangle_count(); ++t) {
     const auto d = pressure.dofs(t);
     parts.unite(d[0], d[1]), parts.unite(d[0], d[2]);
@@ -68,7 +68,7 @@ std::vector<int> dependent_pressures(const SparseMatrix& b, const Dirichlet& dir
     for (SparseMatrix::InnerIterator it(b, v); it; ++it)
       if (column[it.row()] >= 0 && it.value() != 0) columns[column[it.row()]].emplace_back(v, it.value());
   }
-  UnionFind groups(nc);
+  mesh::UnionFind groups(nc);
   std::vector<int> first_column(b.cols(), -1);  // per free velocity: a column that uses it
   for (int c = 0; c < nc; ++c) {
     double norm = 0;

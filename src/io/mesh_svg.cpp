@@ -2,6 +2,12 @@
 
 #include "io/svg_writer.hpp"
 
+#include <algorithm>
+#include <set>
+#include <span>
+#include <stdexcept>
+#include <utility>
+
 using curvemesh::geometry::Vec2;
 
 namespace curvemesh::io {
@@ -60,6 +66,54 @@ std::string mesh_svg(const curve::CurvedMesh& cm) {
   }
   for (int v = 0; v < m.vertex_count(); ++v)
     if (m.tag(v).isolated) svg.dot(m.point(v), "#0000d0");
+  return svg.finish();
+}
+
+namespace {
+
+// Edge e of triangle t (or line l) as a cubic Bézier, from its nodes in Gmsh's order.
+geometry::CubicBezier edge_bezier(const HighOrderMesh& m, std::span<const int> n, int a, int b, int e) {
+  if (m.order == 3)
+    return bezier_through(m.nodes[n[a]], m.nodes[n[3 + 2 * e]], m.nodes[n[4 + 2 * e]], m.nodes[n[b]]);
+  return geometry::CubicBezier::line(m.nodes[n[a]], m.nodes[n[b]]);
+}
+
+}  // namespace
+
+std::string mesh_svg(const HighOrderMesh& m, const std::vector<std::string>& triangle_fill) {
+  if (m.order != 1 && m.order != 3) throw std::logic_error("mesh_svg: triangles of order 1 or 3 only");
+  geometry::Box2 box;
+  for (const Vec2& p : m.nodes) box.add(p);
+  SvgWriter svg(box);
+  std::vector<geometry::CubicBezier> boundary;
+  for (int t = 0; t < m.triangle_count(); ++t) {
+    if (triangle_fill.at(t).empty()) continue;
+    const auto n = m.triangle(t);
+    boundary.clear();
+    for (int e = 0; e < 3; ++e) boundary.push_back(edge_bezier(m, n, e, (e + 1) % 3, e));
+    svg.filled(boundary, triangle_fill[t]);
+  }
+  // Each edge once, lines last (on top) in their colours.
+  std::set<std::pair<int, int>> lines;
+  for (int l = 0; l < m.line_count(); ++l) lines.emplace(std::min(m.line(l)[0], m.line(l)[1]), std::max(m.line(l)[0], m.line(l)[1]));
+  std::set<std::pair<int, int>> drawn;
+  for (int t = 0; t < m.triangle_count(); ++t) {
+    const auto n = m.triangle(t);
+    for (int e = 0; e < 3; ++e) {
+      const int a = n[e], b = n[(e + 1) % 3];
+      const std::pair<int, int> key(std::min(a, b), std::max(a, b));
+      if (lines.count(key) || !drawn.insert(key).second) continue;
+      svg.cubic(edge_bezier(m, n, e, (e + 1) % 3, e), "#808080");
+    }
+  }
+  for (int l = 0; l < m.line_count(); ++l) {
+    const auto n = m.line(l);
+    const int physical = m.line_physical[l];
+    const char* colour = physical == kPhysicalPrimary ? "#d00000" : physical == kPhysicalSecondary ? "#00a000" : "#000000";
+    svg.cubic(m.order == 3 ? bezier_through(m.nodes[n[0]], m.nodes[n[2]], m.nodes[n[3]], m.nodes[n[1]])
+                           : geometry::CubicBezier::line(m.nodes[n[0]], m.nodes[n[1]]),
+              colour);
+  }
   return svg.finish();
 }
 

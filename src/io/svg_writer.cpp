@@ -22,7 +22,9 @@ SvgWriter::SvgWriter(const geometry::Box2& extent) {
   out_ += "\" width=\"1000\" height=\"";
   const double aspect = (box.height() + 2 * margin) / (box.width() + 2 * margin);
   number(std::max(1.0, std::min(100000.0, 1000.0 * aspect)));
-  out_ += "\">\n<g fill=\"none\" stroke-width=\"1\" vector-effect=\"non-scaling-stroke\">\n";
+  out_ += "\">\n<g fill=\"none\" stroke-width=\"";
+  number(box.diagonal() > 0 ? box.diagonal() / 1000 : 0.001);
+  out_ += "\" stroke-linecap=\"round\">\n";
 }
 
 void SvgWriter::number(double v) {
@@ -32,7 +34,7 @@ void SvgWriter::number(double v) {
 }
 
 void SvgWriter::path_start(std::string_view colour) {
-  out_ += "<path vector-effect=\"non-scaling-stroke\" stroke=\"";
+  out_ += "<path stroke=\"";
   out_ += colour;
   out_ += "\" d=\"M";
 }
@@ -72,6 +74,26 @@ void SvgWriter::dot(const geometry::Vec2& p, std::string_view colour) {
   out_ += "\" r=\"";
   number(dot_radius_);
   out_ += "\"/>\n";
+}
+
+void SvgWriter::filled(const std::vector<geometry::CubicBezier>& boundary, std::string_view fill) {
+  if (boundary.empty()) return;
+  out_ += "<path stroke=\"none\" fill=\"";
+  out_ += fill;
+  out_ += "\" d=\"M ";
+  number(boundary[0].p[0].x());
+  out_ += ' ';
+  number(boundary[0].p[0].y());
+  for (const geometry::CubicBezier& c : boundary) {
+    out_ += " C";
+    for (int i = 1; i < 4; ++i) {
+      out_ += ' ';
+      number(c.p[i].x());
+      out_ += ' ';
+      number(c.p[i].y());
+    }
+  }
+  out_ += " Z\"/>\n";
 }
 
 std::string SvgWriter::finish() {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "io/high_order_mesh.hpp"
+#include "regions/faces.hpp"
 
 namespace curvemesh::pipeline {
 
@@ -21,6 +22,9 @@ struct MeshedDrawing {
   // secondary lines; true for the others).
   std::vector<char> line_forward;
   std::vector<SideColours> colours;  // per soup curve (see curve_colours in pipeline/output.hpp)
+  // The faces of `mesh`, and the element painted on each when the run read the paint
+  // (RunOptions::regions): what regions::domain_triangles picks a problem's domain from.
+  regions::Classification classification;
   double diagonal = 0;               // d, the input's bounding-box diagonal
   double seconds = 0;                // time to read and mesh
 };

@@ -28,7 +28,22 @@ bool is_colour(const svg::Paint& p) {
 
 io::HighOrderMesh high_order_mesh(const Result& r) {
   require_mesh(r);
+  if (r.painted) return r.painted->mesh;
   return r.curved ? io::curved_mesh(*r.curved) : io::linear_mesh(r.linear);
+}
+
+std::vector<io::VtuCellScalars> cell_data(const Result& r) {
+  std::vector<io::VtuCellScalars> out;
+  if (!r.painted) return out;
+  const regions::Painted& p = *r.painted;
+  io::VtuCellScalars face{"face", {p.face.begin(), p.face.end()}};
+  out.push_back(std::move(face));
+  if (!p.regions.empty()) {
+    io::VtuCellScalars region{"region", {}};
+    for (int t = 0; t < p.mesh.triangle_count(); ++t) region.values.push_back(p.regions[p.region_of(t)].physical);
+    out.push_back(std::move(region));
+  }
+  return out;
 }
 
 std::vector<int> line_curves(const Result& r, const io::HighOrderMesh& mesh) {
@@ -38,7 +53,9 @@ std::vector<int> line_curves(const Result& r, const io::HighOrderMesh& mesh) {
   out.reserve(mesh.line_count());
   for (int l = 0; l < mesh.line_count(); ++l) {
     const auto ends = mesh.line(l);
-    const mesh::EdgeFeature* feature = corners.feature(ends[0], ends[1]);
+    // A domain's mesh has its nodes renumbered: back to the whole mesh's (the corners' ids).
+    const auto node = [&](int i) { return r.painted ? r.painted->node_origin.at(i) : i; };
+    const mesh::EdgeFeature* feature = corners.feature(node(ends[0]), node(ends[1]));
     out.push_back(feature ? feature->curve : -1);
   }
   return out;
@@ -49,11 +66,24 @@ void write_msh(const Result& r, const std::string& path, int version) {
 }
 
 void write_vtu(const Result& r, const std::string& path) {
-  io::write_vtu(high_order_mesh(r), path);
+  io::write_vtu(high_order_mesh(r), path, cell_data(r));
 }
 
 void write_svg(const Result& r, const std::string& path) {
   require_mesh(r);
+  if (r.painted) {
+    // Each triangle in the colour of the element painted on it; a paint server's (gradient,
+    // pattern) in light grey, the background left white.
+    const regions::Painted& p = *r.painted;
+    std::vector<std::string> fill(p.mesh.triangle_count());
+    for (int t = 0; t < p.mesh.triangle_count(); ++t)
+      if (p.layer[t] >= 0) {
+        const svg::Paint& paint = r.soup.fills[p.layer[t]].fill;
+        fill[t] = paint.kind == svg::Paint::Kind::color ? paint.to_string() : "#d8d8d8";
+      }
+    io::write_file_atomically(path, io::mesh_svg(p.mesh, fill));
+    return;
+  }
   io::write_file_atomically(path, r.curved ? io::mesh_svg(*r.curved) : io::mesh_svg(r.linear));
 }
 
@@ -77,6 +107,8 @@ MeshedDrawing meshed_drawing(const Result& r) {
   out.line_curve = line_curves(r, out.mesh);
   out.diagonal = r.resolved.d;
   out.colours = curve_colours(r.soup);
+  out.classification = r.classification;
+  if (out.classification.faces.of_triangle.empty()) out.classification.faces = regions::find_faces(out.mesh);
   for (const auto& [stage, s] : r.stats["seconds"].items()) out.seconds += s.get<double>();
   for (const curve::FeatureLine& line : curved.lines) {
     const int a = line.nodes[0], b = line.nodes[1];

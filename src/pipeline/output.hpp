@@ -5,18 +5,24 @@
 #include <vector>
 
 #include "io/high_order_mesh.hpp"
+#include "io/vtu_writer.hpp"
 #include "pipeline/meshed_drawing.hpp"
 #include "pipeline/pipeline.hpp"
 
 namespace curvemesh::pipeline {
 
-// The result's mesh (curved when it was curved, else linear) as plain arrays. Throws
+// The result's mesh (curved when it was curved, else linear) as plain arrays: the domain's
+// triangles, tagged by region, when the run was asked for them (RunOptions). Throws
 // std::logic_error when no stage made a mesh.
 io::HighOrderMesh high_order_mesh(const Result& result);
 
+// What the .vtu carries per triangle beyond its physical tag: with a domain or regions, its
+// "face" (in the whole mesh) and, with regions, its "region" (physical tag).
+std::vector<io::VtuCellScalars> cell_data(const Result& result);
+
 // Per line of `mesh` (high_order_mesh of the same result): the soup curve it lies on, from the
 // feature of its two ends in result.corners() (the vertices are the mesh's first nodes, same
-// ids); -1 for a side of the box, and for a secondary line when the input had no curves (.poly).
+// ids, or the domain's nodes that were they); -1 for a side of the box, and for a secondary line when the input had no curves (.poly).
 std::vector<int> line_curves(const Result& result, const io::HighOrderMesh& mesh);
 
 // Gmsh .msh (version 41 or 22), VTK .vtu, and an SVG drawing of the mesh; each written whole or

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "features/poly_input.hpp"
+#include "io/curved_mesh.hpp"
 #include "svg/error.hpp"
 #include "svg/reader.hpp"
 #include "triangulate/invariant_inputs.hpp"
@@ -98,6 +99,58 @@ double finite_diagonal(const geometry::Box2& box, const std::string& name) {
   return d;
 }
 
+bool reads_paint(const RunOptions& o) {
+  return o.regions || o.domain == regions::Domain::filled;
+}
+
+// The faces of the finished mesh, the fills over them and the part given out (RunOptions).
+void paint(Result& r, const RunOptions& o, const std::function<void(const std::string&)>& warn) {
+  if (!o.regions && o.domain == regions::Domain::box) return;
+  const auto t = Clock::now();
+  const io::HighOrderMesh whole = r.curved ? io::curved_mesh(*r.curved) : io::linear_mesh(r.linear);
+  if (reads_paint(o)) {
+    if (r.soup.fills.empty()) warn("no element is filled (fill none, or strokes only): every face is background");
+    if (r.soup.clipped_elements > 0)
+      warn(std::to_string(r.soup.clipped_elements) + " element" + (r.soup.clipped_elements == 1 ? " has" : "s have") +
+           " a clip path or mask, which the regions ignore: their fills count unclipped");
+    regions::ClassifyOptions c;
+    c.clearance = r.resolved.features.epsilon;
+    c.resolution = 1e-10 * r.resolved.d;
+    try {
+      r.classification = regions::classify(whole, r.soup.fills, c);
+    } catch (const regions::Undecided& e) {
+      const svg::SourceElement& s = r.soup.sources.at(r.soup.fills.at(e.layer).source);
+      throw internal(r.name + ": cannot decide on which side of the outline of <" + s.tag +
+                     (s.id.empty() ? "" : " id=\"" + s.id + "\"") + "> (line " + std::to_string(s.line) + ") face " +
+                     std::to_string(e.face) + " of the mesh lies");
+    }
+  } else {
+    r.classification.faces = regions::find_faces(whole);
+  }
+  r.painted = regions::paint(whole, r.classification, r.soup, o.domain, o.regions);
+  const regions::Painted& p = *r.painted;
+  if (p.mesh.triangle_count() == 0)
+    throw invalid(r.name + ": the domain '" + regions::domain_name(o.domain) + "' is empty (" +
+                  (o.domain == regions::Domain::filled ? "nothing of the drawing is filled"
+                                                       : "no part of the box is enclosed by its curves") +
+                  ")");
+  Json& stats = r.stats;
+  stats["domain"] = {{"name", regions::domain_name(o.domain)},
+                     {"faces", r.classification.faces.count()},
+                     {"triangles", p.mesh.triangle_count()}};
+  if (o.regions) {
+    Json list = Json::array();
+    for (const regions::Region& region : p.regions)
+      list.push_back({{"physical", region.physical},
+                      {"name", region.name},
+                      {"fill", region.fill.to_string()},
+                      {"triangles", region.triangles},
+                      {"area", region.area}});
+    stats["regions"] = std::move(list);
+  }
+  stats["seconds"]["regions"] = seconds_since(t);
+}
+
 }  // namespace
 
 const char* stage_name(Stage stage) {
@@ -186,6 +239,7 @@ Result run(const Source& source, const Parameters& parameters, const RunOptions&
     } else {
       svg::ReadOptions read;
       read.degenerate_tolerance_rel = parameters.eps_m_rel;
+      read.close_filled_subpaths = reads_paint(options);
       if (source.kind == Source::Kind::file)
         r.soup = svg::read_svg_file(source.path, read);
       else if (source.kind == Source::Kind::svg_text)
@@ -255,7 +309,10 @@ Result run(const Source& source, const Parameters& parameters, const RunOptions&
     throw internal(source.name + ": " + std::to_string(r.linear.exact_vertex_count()) +
                    " vertices still have exact coordinates that do not round to doubles without inverting a "
                    "triangle");
-  if (last != Stage::curve) return r;
+  if (last != Stage::curve) {
+    paint(r, options, warn);
+    return r;
+  }
 
   t = Clock::now();
   curve::Stats& s = r.curve_stats;
@@ -273,6 +330,7 @@ Result run(const Source& source, const Parameters& parameters, const RunOptions&
   if (s.invalid_triangles > 0)
     throw internal("internal error: " + source.name + ": " + std::to_string(s.invalid_triangles) +
                    " curved triangles could not be certified valid");
+  paint(r, options, warn);
   return r;
 }
 

@@ -18,6 +18,7 @@
 #include "mesh/tri_mesh.hpp"
 #include "optimize/optimize.hpp"
 #include "pipeline/parameters.hpp"
+#include "regions/paint.hpp"
 #include "svg/feature_soup.hpp"
 #include "triangulate/triangulate.hpp"
 
@@ -67,6 +68,12 @@ struct RunOptions {
   std::function<void(const std::string&)> warn;
   // Called as the run goes (for progress displays); never changes what the run makes.
   std::function<void(const Progress&)> progress;
+  // What the finished mesh keeps (regions/faces.hpp): the whole box, what the drawing fills, or
+  // the even–odd inside of its curves; and whether its triangles are tagged by the element painted
+  // on them. Either one makes the run read the drawing's paint: the line closing each open
+  // subpath of a filled element becomes a feature, so the faces follow the fills.
+  regions::Domain domain = regions::Domain::box;
+  bool regions = false;
 };
 
 struct Result {
@@ -86,14 +93,20 @@ struct Result {
   optimize::Stats optimize_stats;
   curve::Stats curve_stats;
   nlohmann::ordered_json stats;  // counts, quality and seconds per stage, as --stats writes them
+  // With RunOptions::regions or a domain other than the box: the faces of the whole mesh and the
+  // element each shows (fills classified only then), and the mesh that is given out.
+  regions::Classification classification;
+  std::optional<regions::Painted> painted;
 
   // The linear mesh: the optimized one, or the curved mesh's corners after curve's step 1.
   const mesh::TriMesh& corners() const { return curved ? curved->linear : linear; }
 };
 
-// Runs the stages up to options.stop_after (at most `optimize` when parameters.linear). Throws
-// curvemesh::Error: invalid_parameters, invalid_input when the drawing cannot be read or has
-// nothing to mesh, internal when the mesh cannot be given out. A mesh it returns is valid: no
+// Runs the stages up to options.stop_after (at most `optimize` when parameters.linear), then
+// classifies the mesh's faces when asked. Throws curvemesh::Error: invalid_parameters,
+// invalid_input when the drawing cannot be read, has nothing to mesh or leaves the domain empty,
+// internal when the mesh cannot be given out or a face's side of a filled element's outline
+// cannot be decided. A mesh it returns is valid: no
 // broken structure, every vertex in doubles, every curved triangle certified.
 Result run(const Source& source, const Parameters& parameters, const RunOptions& options = {});
 

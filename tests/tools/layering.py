@@ -13,15 +13,15 @@ import re
 import sys
 import tempfile
 
-ORDER = ["geometry", "mesh", "svg", "features", "triangulate", "optimize", "curve", "io", "pipeline",
-         "fem", "api", "app", "python"]
+ORDER = ["geometry", "mesh", "svg", "features", "triangulate", "optimize", "curve", "io", "regions",
+         "pipeline", "fem", "api", "app", "python"]
 RANK = {layer: i for i, layer in enumerate(ORDER)}
 # Below its own rank, a layer may still not reach these (it must go through the pipeline).
 FORBIDDEN = {
     "fem": {"svg", "features", "triangulate", "optimize", "curve"},
-    "api": {"svg", "features", "triangulate", "optimize", "curve", "fem"},
-    "python": {"geometry", "mesh", "svg", "features", "triangulate", "optimize", "curve", "io", "pipeline",
-               "fem"},
+    "api": {"svg", "features", "triangulate", "optimize", "curve", "regions", "fem"},
+    "python": {"geometry", "mesh", "svg", "features", "triangulate", "optimize", "curve", "io", "regions",
+               "pipeline", "fem"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"', re.M)
 

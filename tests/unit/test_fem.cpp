@@ -191,7 +191,7 @@ TEST(Regions, EvenOddDepthOfASquareWithAHole) {
     <rect x="1" y="1" width="8" height="8" fill="none" stroke="black"/>
     <circle cx="5" cy="5" r="2" fill="none" stroke="black"/></svg>)";
   const MeshedDrawing d = pipeline::mesh_drawing(pipeline::Source::svg(text, "<square>"));
-  const Regions r = find_regions(d.mesh);
+  const regions::Faces r = regions::find_faces(d.mesh);
   std::set<int> depths(r.depth.begin(), r.depth.end());
   EXPECT_EQ(depths, (std::set<int>{0, 1, 2}));
   std::vector<char> ring(d.mesh.triangle_count()), hole(d.mesh.triangle_count());
@@ -219,7 +219,7 @@ TEST(Cut, SidesOfACutAreIndependent) {
   EXPECT_EQ(c.mesh.line_count(), d.mesh.line_count() + cuts);
   EXPECT_EQ(c.mesh.nodes.size(), d.mesh.nodes.size() + 3 * cuts);  // one corner and two inner nodes per cut edge
   EXPECT_FALSE(c.mesh.structure_error());
-  const Regions r = find_regions(c.mesh);
+  const regions::Faces r = regions::find_faces(c.mesh);
   const Geometry g(c.mesh);
   const Space s(c.mesh, 2);
   Dirichlet dir(s.size());
@@ -242,7 +242,7 @@ TEST(Cut, SidesOfACutAreIndependent) {
 // u = f (1 − r²)² / 64.
 TEST(Inflate, MatchesTheClampedDiskSolution) {
   const MeshedDrawing d = disk(0.04);
-  const Regions r = find_regions(d.mesh);
+  const regions::Faces r = regions::find_faces(d.mesh);
   std::vector<char> keep(d.mesh.triangle_count());
   for (int t = 0; t < d.mesh.triangle_count(); ++t) keep[t] = r.depth[r.of_triangle[t]] == 1;
   const io::HighOrderMesh m = submesh(d.mesh, keep);

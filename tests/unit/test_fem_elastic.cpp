@@ -211,9 +211,8 @@ struct HungRing {
     pipeline::Parameters p;
     p.edge_length_rel = edge_length_rel;
     drawing = pipeline::mesh_drawing(pipeline::Source::file(std::string(CURVEMESH_EXAMPLES) + "/square-with-hole.svg"), p);
-    const Regions regions = find_regions(drawing.mesh);
-    std::vector<char> keep(drawing.mesh.triangle_count());
-    for (int t = 0; t < drawing.mesh.triangle_count(); ++t) keep[t] = regions.depth[regions.of_triangle[t]] == 1;
+    const std::vector<char> keep =
+        regions::domain_triangles({regions::find_faces(drawing.mesh), {}}, regions::Domain::evenodd);
     mesh = submesh(drawing.mesh, keep);
   }
 };

@@ -6,7 +6,7 @@
 #include <numeric>
 #include <vector>
 
-namespace curvemesh::fem {
+namespace curvemesh::mesh {
 
 class UnionFind {
  public:
@@ -24,4 +24,4 @@ class UnionFind {
   std::vector<int> parent_;
 };
 
-}  // namespace curvemesh::fem
+}  // namespace curvemesh::mesh

@@ -1,0 +1,68 @@
+#pragma once
+// Which filled shape of the drawing each face of a finished mesh shows, decided as a browser
+// paints: every filled element (fill not none) covers the points whose winding number with
+// respect to its own outline is inside under its fill rule (nonzero or evenodd), after its
+// transforms and <use>; the visible one is the topmost in paint order. Opacity, gradients and
+// patterns do not change coverage; clip paths and masks are not applied.
+//
+// A face is bounded by feature lines on input curves, so each shape's winding number is the same
+// all over it, except where the mesh follows an outline only within ε (secondary lines) or drops
+// a piece of it (degenerate curves): the face is then decided at its sample point farthest from
+// that outline, one at least ε from it where there is one. A face that lies entirely on an
+// outline, as far as doubles can tell, is not guessed: classify throws Undecided.
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "io/high_order_mesh.hpp"
+#include "regions/faces.hpp"
+#include "svg/feature_soup.hpp"
+
+namespace curvemesh::regions {
+
+struct ClassifyOptions {
+  // How far the mesh's feature lines may lie from the input curves (ε, absolute): a sample point
+  // this far from a shape's outline is on the side its face is.
+  double clearance = 0;
+  // Below this distance (absolute) a point counts as lying on an outline.
+  double resolution = 0;
+};
+
+// Thrown when a face's side of a shape's outline cannot be decided.
+class Undecided : public std::runtime_error {
+ public:
+  Undecided(int layer, int face) : std::runtime_error("undecided face"), layer(layer), face(face) {}
+  int layer, face;
+};
+
+// The faces of `mesh` (the whole box, linear or curved) and the visible fill layer of each.
+Classification classify(const io::HighOrderMesh& mesh, const std::vector<svg::FillLayer>& fills,
+                        const ClassifyOptions& options);
+
+// A part of the mesh's triangles tagged by what is painted on them.
+struct Region {
+  int physical = 0;    // its physical surface tag, from 1, in paint order (background first)
+  std::string name;    // the element's id, else TAG#INDEX (document index), or "background"
+  svg::Paint fill;     // none for the background
+  int source = -1;     // the soup's source element, -1 for the background
+  int triangles = 0;
+  double area = 0;     // of its (curved) triangles
+};
+
+struct Painted {
+  io::HighOrderMesh mesh;           // the domain's triangles; physical tags by region when tagged
+  std::vector<int> node_origin;     // per node of `mesh`: its node in the whole mesh
+  std::vector<int> face;            // per triangle of `mesh`: its face in the whole mesh
+  std::vector<int> layer;           // per triangle: its visible fill layer, -1 none (or not classified)
+  std::vector<Region> regions;      // empty unless tagged by region
+  int region_of(int triangle) const;  // index into `regions` (tagged meshes only)
+};
+
+// The triangles of `whole` in `domain`, each tagged with the physical surface of its region when
+// `tag_regions` (one per visible element and fill, and "background"): what `curvemesh mesh
+// --regions --domain ...` writes. The classification must have its fills classified when
+// tagging or for Domain::filled.
+Painted paint(const io::HighOrderMesh& whole, const Classification& classification, const svg::FeatureSoup& soup,
+              Domain domain, bool tag_regions);
+
+}  // namespace curvemesh::regions
