@@ -59,9 +59,7 @@ int run_mesh(const MeshArgs& args) {
   if (!parameters_valid(args.parameters)) return kUsage;
   if (args.verbose) run.log = &std::cerr;
   run.regions = args.regions;
-  run.domain = args.domain == "filled"    ? regions::Domain::filled
-               : args.domain == "evenodd" ? regions::Domain::evenodd
-                                          : regions::Domain::box;
+  run.domain = *regions::domain_named(args.domain);  // CLI checked the name
   run.warn = [&](const std::string& w) {
     std::cerr << "curvemesh: " << args.input << ": warning: " << w << "\n";
   };

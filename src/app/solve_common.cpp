@@ -62,14 +62,11 @@ std::optional<Problem> prepare_problem(const SolveOptions& o, int* exit_code) {
   for (const geometry::Vec2& x : whole.nodes) p.view.add(x);
   // The same classification as `curvemesh mesh --domain` (regions/faces.hpp).
   const regions::Classification& classified = p.drawing.classification;
-  std::vector<char> keep;
-  if (o.domain == "all" || o.domain == "box") keep = regions::domain_triangles(classified, regions::Domain::box);
-  if (o.domain == "filled") keep = regions::domain_triangles(classified, regions::Domain::filled);
-  if (o.domain == "inside" || o.domain == "evenodd" || o.domain == "outside") {
-    keep = regions::domain_triangles(classified, regions::Domain::evenodd);
-    if (o.domain == "outside")
-      for (char& k : keep) k = !k;
-  }
+  // inside and all are the older names of evenodd and box; outside is evenodd's complement.
+  const std::string name = o.domain == "all" ? "box" : o.domain == "inside" || o.domain == "outside" ? "evenodd" : o.domain;
+  std::vector<char> keep = regions::domain_triangles(classified, *regions::domain_named(name));
+  if (o.domain == "outside")
+    for (char& k : keep) k = !k;
   const int kept = static_cast<int>(std::count(keep.begin(), keep.end(), 1));
   if (kept == 0) {
     std::cerr << "curvemesh: " << o.input << ": the domain '" << o.domain << "' is empty ("

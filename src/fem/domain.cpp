@@ -8,23 +8,6 @@
 
 namespace curvemesh::fem {
 
-namespace {
-
-using EdgeKey = std::pair<int, int>;
-EdgeKey key(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
-
-// The triangles on each edge (by corner nodes).
-std::map<EdgeKey, std::vector<std::pair<int, int>>> edge_triangles(const io::HighOrderMesh& mesh) {
-  std::map<EdgeKey, std::vector<std::pair<int, int>>> out;
-  for (int t = 0; t < mesh.triangle_count(); ++t) {
-    const auto tri = mesh.triangle(t);
-    for (int e = 0; e < 3; ++e) out[key(tri[e], tri[(e + 1) % 3])].emplace_back(t, e);
-  }
-  return out;
-}
-
-}  // namespace
-
 CutMesh cut_open(const io::HighOrderMesh& mesh, const std::vector<char>& cut) {
   const int n = mesh.triangle_count();
   const int size = mesh.triangle_size();

@@ -10,6 +10,7 @@
 namespace curvemesh::fem {
 
 using regions::edge_lines;
+using regions::edge_triangles;
 using regions::submesh;
 
 // The mesh cut open along the lines with cut[l] set: the triangles on the two sides of a cut

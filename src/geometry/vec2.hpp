@@ -32,6 +32,12 @@ struct Box2 {
     add(b.max);
   }
   double diagonal() const { return empty() ? 0.0 : (max - min).norm(); }
+  // The squared distance from p to the box (0 inside it or on its border).
+  double squared_distance(const Vec2& p) const {
+    const double dx = std::max({min.x() - p.x(), 0.0, p.x() - max.x()});
+    const double dy = std::max({min.y() - p.y(), 0.0, p.y() - max.y()});
+    return dx * dx + dy * dy;
+  }
   double width() const { return empty() ? 0.0 : max.x() - min.x(); }
   double height() const { return empty() ? 0.0 : max.y() - min.y(); }
 };

@@ -39,9 +39,8 @@ std::vector<io::VtuCellScalars> cell_data(const Result& r) {
   io::VtuCellScalars face{"face", {p.face.begin(), p.face.end()}};
   out.push_back(std::move(face));
   if (!p.regions.empty()) {
-    io::VtuCellScalars region{"region", {}};
-    for (int t = 0; t < p.mesh.triangle_count(); ++t) region.values.push_back(p.regions[p.region_of(t)].physical);
-    out.push_back(std::move(region));
+    // A tagged mesh's physical surface is its region.
+    out.push_back({"region", {p.mesh.triangle_physical.begin(), p.mesh.triangle_physical.end()}});
   }
   return out;
 }

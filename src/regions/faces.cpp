@@ -35,15 +35,19 @@ std::vector<std::array<int, 3>> edge_lines(const io::HighOrderMesh& mesh) {
   return out;
 }
 
+std::map<EdgeKey, std::vector<std::pair<int, int>>> edge_triangles(const io::HighOrderMesh& mesh) {
+  std::map<EdgeKey, std::vector<std::pair<int, int>>> out;
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    const auto tri = mesh.triangle(t);
+    for (int e = 0; e < 3; ++e) out[key(tri[e], tri[(e + 1) % 3])].emplace_back(t, e);
+  }
+  return out;
+}
+
 Faces find_faces(const io::HighOrderMesh& mesh) {
   const int n = mesh.triangle_count();
   const auto lines = edge_lines(mesh);
-  // The triangles on each edge (by corner nodes).
-  std::map<EdgeKey, std::vector<std::pair<int, int>>> triangles_on;
-  for (int t = 0; t < n; ++t) {
-    const auto tri = mesh.triangle(t);
-    for (int e = 0; e < 3; ++e) triangles_on[key(tri[e], tri[(e + 1) % 3])].emplace_back(t, e);
-  }
+  const auto triangles_on = edge_triangles(mesh);
   mesh::UnionFind uf(n);
   for (const auto& [edge, ts] : triangles_on)
     for (std::size_t i = 1; i < ts.size(); ++i)
@@ -91,6 +95,12 @@ const char* domain_name(Domain domain) {
       return "evenodd";
   }
   return "?";
+}
+
+std::optional<Domain> domain_named(const std::string& name) {
+  for (Domain d : {Domain::box, Domain::filled, Domain::evenodd})
+    if (name == domain_name(d)) return d;
+  return std::nullopt;
 }
 
 std::vector<char> domain_triangles(const Classification& c, Domain domain) {

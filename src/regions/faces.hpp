@@ -8,6 +8,10 @@
 // k + 1. Odd depth is the drawing's inside under the even–odd rule over all its curves (a square
 // with a round hole: the ring has depth 1, the hole 2).
 #include <array>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "io/high_order_mesh.hpp"
@@ -17,6 +21,10 @@ namespace curvemesh::regions {
 // For every triangle, the line on each of its edges (-1 for none): lines are matched to edges
 // by their end nodes.
 std::vector<std::array<int, 3>> edge_lines(const io::HighOrderMesh& mesh);
+
+// For every edge (its corner nodes, smaller first), the triangles on it and the edge's index in
+// each: (triangle, edge).
+std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> edge_triangles(const io::HighOrderMesh& mesh);
 
 struct Faces {
   std::vector<int> of_triangle;  // face index per triangle
@@ -38,6 +46,8 @@ struct Classification {
 // it is seen, the background gone), or the even–odd inside of all curves (odd depth).
 enum class Domain { box, filled, evenodd };
 const char* domain_name(Domain domain);
+// "box", "filled", "evenodd"; nothing for another name.
+std::optional<Domain> domain_named(const std::string& name);
 
 // Per triangle, whether it is in the domain. `filled` needs a classification of the fills.
 std::vector<char> domain_triangles(const Classification& classification, Domain domain);

@@ -1,7 +1,6 @@
 #include "regions/paint.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <map>
 #include <utility>
 
@@ -32,12 +31,6 @@ void add_samples(const io::HighOrderMesh& mesh, int t, std::vector<geometry::Vec
 double corner_area(const io::HighOrderMesh& mesh, int t) {
   const auto tri = mesh.triangle(t);
   return geometry::cross(mesh.nodes[tri[1]] - mesh.nodes[tri[0]], mesh.nodes[tri[2]] - mesh.nodes[tri[0]]) / 2;
-}
-
-double distance_to_box(const geometry::Vec2& p, const geometry::Box2& b) {
-  const double dx = std::max({b.min.x() - p.x(), 0.0, p.x() - b.max.x()});
-  const double dy = std::max({b.min.y() - p.y(), 0.0, p.y() - b.max.y()});
-  return std::hypot(dx, dy);
 }
 
 // Triangles sampled per face: its largest first.
@@ -72,7 +65,8 @@ Classification classify(const io::HighOrderMesh& mesh, const std::vector<svg::Fi
     for (int l = static_cast<int>(fills.size()) - 1; l >= 0; --l) {
       const svg::FillLayer& layer = fills[l];
       // Far outside the layer's box (the usual case): wound around by none of its loops.
-      if (!samples[f].empty() && distance_to_box(samples[f][0], layer.bounds) >= options.clearance) continue;
+      if (!samples[f].empty() && layer.bounds.squared_distance(samples[f][0]) >= options.clearance * options.clearance)
+        continue;
       Winding best;
       bool any = false;
       for (const geometry::Vec2& p : samples[f]) {

@@ -13,13 +13,6 @@ using geometry::Box2;
 using geometry::CubicBezier;
 using geometry::Vec2;
 
-// Squared distances: the queries compare them, and take one square root at the end.
-double squared_distance_to_box(const Vec2& p, const Box2& b) {
-  const double dx = std::max({b.min.x() - p.x(), 0.0, p.x() - b.max.x()});
-  const double dy = std::max({b.min.y() - p.y(), 0.0, p.y() - b.max.y()});
-  return dx * dx + dy * dy;
-}
-
 double squared_diagonal(const Box2& b) {
   return (b.max - b.min).squaredNorm();
 }
@@ -48,7 +41,7 @@ struct Query {
 
   void piece(const CubicBezier& c, int depth) {
     const Box2 box = c.control_bounds();
-    const double gap2 = squared_distance_to_box(p, box);
+    const double gap2 = box.squared_distance(p);  // squared: one square root at the end
     if (whole(box, gap2, depth)) {
       winding += crossings(p, box, c.p[0], c.p[3]);
       clearance2 = std::min(clearance2, gap2);
@@ -106,7 +99,7 @@ Winding Outline::winding(const Vec2& point, double resolution, double wanted) co
     while (top > 0 && q.decided) {
       const Node& n = nodes_[stack[--top]];
       const auto& loop = layer_.subpaths[n.loop];
-      const double gap2 = squared_distance_to_box(point, n.box);
+      const double gap2 = n.box.squared_distance(point);
       if (q.whole(n.box, gap2, 0)) {
         q.winding += crossings(point, n.box, loop[n.first].p[0], loop[n.last - 1].p[3]);
         q.clearance2 = std::min(q.clearance2, gap2);
