@@ -90,7 +90,9 @@ void Builder::fit(int a, int b) {
   // than the stop energy or the straight edge's (the bare validity limit would leave an element
   // next to degenerate there).
   const auto acceptable = [&] { return within(triangles, allowed) && certify_all(touched); };
-  const auto [first, second] = edge_nodes(lo, hi);
+  // (Not a structured binding: the lambda below uses them, which clang before 16 refuses.)
+  const std::pair<int, int> inner = edge_nodes(lo, hi);
+  const int first = inner.first, second = inner.second;
   const Vec2 straight1 = out_.nodes[first], straight2 = out_.nodes[second];
   place_on_curve(lo, hi);
   const Vec2 curve1 = out_.nodes[first], curve2 = out_.nodes[second];

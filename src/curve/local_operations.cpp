@@ -41,7 +41,10 @@ int Builder::improve_triangle(int t) {
   std::stable_sort(edges.begin(), edges.end(), [&](const auto& x, const auto& y) {
     return (at(x[0]) - at(x[1])).squaredNorm() > (at(y[0]) - at(y[1])).squaredNorm();
   });
-  for (const auto& [a, b] : edges) {
+  // The loops name the ends without structured bindings: the lambdas use them, which clang
+  // before 16 refuses.
+  for (const auto& edge : edges) {
+    const int a = edge[0], b = edge[1];
     if (m.feature(a, b)) continue;
     if (try_operation(m.edge_triangles(a, b), [&]() -> std::optional<std::vector<int>> {
           std::vector<int> changed = m.edge_triangles(a, b);
@@ -52,8 +55,9 @@ int Builder::improve_triangle(int t) {
       return 1;
     }
   }
-  for (const auto& [a, b] : edges)
-    for (const auto& [from, to] : {std::pair{a, b}, std::pair{b, a}}) {
+  for (const auto& edge : edges)
+    for (const auto& ends : {std::pair{edge[0], edge[1]}, std::pair{edge[1], edge[0]}}) {
+      const int from = ends.first, to = ends.second;
       const std::vector<int> star = m.triangles_of(from);
       if (try_operation(star, [&]() -> std::optional<std::vector<int>> {
             std::vector<int> kept;
@@ -76,7 +80,8 @@ int Builder::improve_triangle(int t) {
     // A primary vertex left on the chord would leave its curve's edges straight.
     return mid >= 0 && !(m.tag(mid).kind == mesh::VertexKind::primary && !m.tag(mid).on_curve) ? mid : -1;
   };
-  for (const auto& [a, b] : edges) {
+  for (const auto& edge : edges) {
+    const int a = edge[0], b = edge[1];
     if (try_operation(m.edge_triangles(a, b), [&]() -> std::optional<std::vector<int>> {
           const int mid = split(a, b);
           if (mid < 0) return std::nullopt;

@@ -146,8 +146,9 @@ bool side_neighbours(const TriMesh& m, int v, int& x, int& y) {
 }  // namespace
 
 int split_edge(TriMesh& m, const Constraints& c, int a, int b, double energy_bound) {
-  const auto [t1, cc] = triangle_left_of(m, a, b);
-  const auto [t2, d] = triangle_left_of(m, b, a);
+  // Named without structured bindings: the lambdas below use them, which clang before 16 refuses.
+  const std::pair<int, int> left = triangle_left_of(m, a, b), right = triangle_left_of(m, b, a);
+  const int t1 = left.first, cc = left.second, t2 = right.first, d = right.second;
   if (t1 < 0 && t2 < 0) return -1;
   const EdgeFeature* found = m.feature(a, b);
   const EdgeFeature f = found ? *found : EdgeFeature{};
