@@ -1,7 +1,9 @@
 #include "pipeline/pipeline.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "features/poly_input.hpp"
@@ -91,11 +93,27 @@ const svg::FeatureSoup& finite_soup(const svg::FeatureSoup& soup, const std::str
   return soup;
 }
 
-// Coordinates near the top of the doubles' range (1e200) would make every length infinite.
+// Coordinates near the top of the doubles' range (1e200) would make every length infinite; and
+// a drawing small beside its distance from the origin has too few bits of its coordinates left
+// to mesh (doubles near 1e15 are 0.125 apart: a drawing 1 wide there has three bits). The doubles
+// where it lies must be at most 2^-30 of its size apart (as resolve() takes it).
 double finite_diagonal(const geometry::Box2& box, const std::string& name) {
   const double d = box.diagonal();
   if (!std::isfinite(d))
     throw invalid(name + ": coordinates too large: the drawing's diagonal overflows a double");
+  if (!box.empty()) {
+    const double far = std::max({std::abs(box.min.x()), std::abs(box.min.y()), std::abs(box.max.x()),
+                                 std::abs(box.max.y())});
+    const double spacing = std::nextafter(far, std::numeric_limits<double>::infinity()) - far;
+    const double size = d > 0 ? d : 1.0;
+    if (spacing > std::ldexp(size, -30)) {
+      std::ostringstream s;
+      s << name << ": the drawing is too small for how far it lies from the origin: its size is " << size
+        << ", and at coordinates of " << far << " doubles are " << spacing
+        << " apart, more than 2^-30 of that size; move it nearer the origin";
+      throw invalid(s.str());
+    }
+  }
   return d;
 }
 
