@@ -146,7 +146,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
   const auto edge_target = [&](int a, int b) { return 0.5 * (size[a] + size[b]); };
   double best_max = s.initial.max_amips;
   int fruitless_refinements = 0;
-  long previous_changes = std::numeric_limits<long>::max();
+  long previous_changes = -1;  // none before the first iteration
 
   for (; s.iterations < o.max_iterations; ++s.iterations) {
     long changes = 0;  // splits and collapses: the sizing work done in this iteration
@@ -240,7 +240,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
     // The stop rule of §4.1 applies once the sizes are met: little is left to split or collapse
     // (2 % of the triangles), or what is left no longer shrinks by a fifth per pass (the churn
     // that smoothing and swapping cause, not sizing work).
-    const bool sizes_met = 50 * changes <= q.triangles || 5 * changes > 4 * previous_changes;
+    const bool sizes_met = 50 * changes <= q.triangles || (previous_changes >= 0 && 5 * changes > 4 * previous_changes);
     previous_changes = changes;
     if (good && sizes_met) {
       s.stop_reason = "quality";

@@ -62,4 +62,18 @@ TEST(PipelineExtremes, HugeAndTinyScales) {
   }
 }
 
+// Found by fuzz/fuzz_pipeline.cpp (written out with FUZZ_PIPELINE_SVG): a cubic twice over and a
+// flat one, at 1e12. Under UndefinedBehaviorSanitizer (CURVEMESH_SANITIZE=ON) the optimizer's
+// stop rule overflowed here: its first iteration compared four times "the previous iteration's
+// changes", then LONG_MAX.
+TEST(PipelineExtremes, FoundByFuzzingCoincidentCubicsAt1e12) {
+  const std::string svg =
+    R"(<svg xmlns="http://www.w3.org/2000/svg">)"
+    R"(<path fill="none" stroke="black" d="M-899993896484.375 -100006103515.625C-299987792968.75 799987792968.75 299987792968.75 -799987792968.75 899993896484.375 100006103515.625"/>)"
+    R"(<path fill="none" stroke="black" d="M-899993896484.375 -100006103515.625C-299987792968.75 799987792968.75 299987792968.75 -799987792968.75 899993896484.375 100006103515.625"/>)"
+    R"(<path fill="none" stroke="black" d="M-945312500000 -1000000000000C-1000000000000 -1000000000000 -1000000000000 -1000000000000 -1000000000000 -1000000000000"/>)"
+    R"(</svg>)";
+  expect_certified(pipeline::run(pipeline::Source::svg(svg, "fuzz-1"), {}));
+}
+
 }  // namespace
