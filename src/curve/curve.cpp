@@ -75,8 +75,9 @@ void Builder::run() {
       fit(edge[0], edge[1]);
   improve();
   finish();
+  std::vector<double> amips(out_.triangles.size());
   for (std::size_t t = 0; t < out_.triangles.size(); ++t) {
-    const double e = energy(static_cast<int>(t));
+    const double e = amips[t] = energy(static_cast<int>(t));
     s_.max_amips = std::max(s_.max_amips, e);
     s_.mean_amips += e / static_cast<double>(out_.triangles.size());
     if (scaled_[t] <= 0) ++s_.invalid_triangles;
@@ -85,6 +86,7 @@ void Builder::run() {
       s_.min_scaled_jacobian = std::min(s_.min_scaled_jacobian, scaled_[t]);
     }
   }
+  s_.wedges = wedges(out_, amips, o_.stop_amips);
   // Feature lines and edge statistics.
   for (const auto& [edge, f] : m.sorted_features()) {
     const auto [first, second] = edge_nodes(edge[0], edge[1]);

@@ -31,6 +31,7 @@
 // High-order nodes are shared: one per edge position, one centre per triangle.
 #include <array>
 #include <functional>
+#include <numbers>
 #include <vector>
 
 #include "geometry/vec2.hpp"
@@ -53,6 +54,13 @@ struct Options {
   std::function<void(int above, double max_amips)> on_pass;
 };
 
+struct WedgeStats {
+  double smallest_wedge = 2 * std::numbers::pi;  // radians, over the fixed vertices' wedges
+  double smallest_wedge_bound = 0;  // wedge_amips_bound(smallest_wedge); 0 when there is no wedge
+  int sharp_triangles = 0;          // triangles in a wedge whose bound is above the stop energy
+  double max_amips_elsewhere = 0;   // the largest AMIPS over all other triangles
+};
+
 struct Stats {
   int split_triangles = 0;      // splits made so that every triangle has at most one primary edge
   int primary_edges = 0;        // primary edges of the final mesh
@@ -72,6 +80,7 @@ struct Stats {
   int smoothing_moves = 0;                // corner and centre moves step 4 kept
   int curved_splits = 0, curved_collapses = 0, curved_swaps = 0;  // operations step 4 kept
   int late_projections = 0;               // primary vertices brought onto their curve only now
+  WedgeStats wedges;                      // the sharp wedges at fixed vertices, and the rest
   double seconds = 0;
 };
 
@@ -87,6 +96,17 @@ struct CurvedMesh {
   std::vector<std::array<int, 10>> triangles;  // Gmsh's 10-node order, counter-clockwise corners
   std::vector<FeatureLine> lines;   // every tagged edge, deterministic order
 };
+
+// Where tagged lines (curves, secondary lines, the box) leave a fixed vertex at a small angle,
+// the triangles between them cannot all be good: k triangles filling a wedge of angle w are at
+// best isosceles with apex w / k, of AMIPS (2 + 4 sin²(θ/2)) / (√3 sin θ) at θ = w / k. This is
+// that best value for the best k (6.75 at 10°, 13.3 at 5°, 20 at about 3.3°).
+double wedge_amips_bound(double wedge);
+
+
+// The wedges of a finished curved mesh (corner directions from the P3 nodes), with `amips` each
+// triangle's energy (geometry::p3_max_amips) and stop_amips the curved stop energy.
+WedgeStats wedges(const CurvedMesh& mesh, const std::vector<double>& amips, double stop_amips);
 
 // `diagonal` is the input's bounding-box diagonal d. The linear mesh must be valid (the output of
 // optimize). Never fails: the worst outcome is a straight mesh.

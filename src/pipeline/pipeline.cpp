@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <sstream>
 
 #include "features/poly_input.hpp"
@@ -63,6 +64,10 @@ Json curve_json(const curve::Stats& s, double d) {
           {"late_projections", s.late_projections},
           {"max_amips", s.max_amips},
           {"mean_amips", s.mean_amips},
+          {"smallest_wedge_deg", s.wedges.smallest_wedge * 180 / std::numbers::pi},
+          {"wedge_amips_bound", s.wedges.smallest_wedge_bound},
+          {"sharp_triangles", s.wedges.sharp_triangles},
+          {"max_amips_elsewhere", s.wedges.max_amips_elsewhere},
           {"max_distance", s.max_distance},
           {"max_distance_rel", s.max_distance / d},
           {"mean_fit_distance_rel", s.mean_fit_distance / d}};
