@@ -68,8 +68,8 @@ void Builder::run() {
   for (int v = 0; v < m.vertex_count(); ++v)
     if (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) s_.late_projections += project(v);
   smooth();
-  // Step 5: the primary edges still straight, brought onto their curve or towards it only where
-  // no triangle gets worse than the stop energy or than the worst of those it changes.
+  // Step 5: the primary edges still straight. Bringing one onto its curve may leave a poor
+  // (certified) triangle, which the operations below then improve.
   for (const auto& [edge, f] : m.sorted_features())
     if (f.kind == EdgeKind::primary && !curved_.at(mesh::edge_key(edge[0], edge[1])) && followable(m, edge[0], edge[1]))
       fit(edge[0], edge[1]);

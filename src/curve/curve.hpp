@@ -12,8 +12,7 @@
 //  3. Validity: the Jacobian determinant of every curved triangle is certified positive on the
 //     whole triangle (Bernstein coefficients, subdivision; geometry/p3_triangle). A primary edge
 //     is straightened when either of its triangles cannot be certified with it curved.
-//  4. Primary vertices still off their curve are projected onto it (where that leaves none of
-//     their triangles above the stop energy and the worst of them before). Where a triangle's AMIPS
+//  4. Primary vertices still off their curve are projected onto it. Where a triangle's AMIPS
 //     energy exceeds Options::stop_amips, smoothing first: its free and secondary corners move in
 //     the plane (secondary edges inside the ε-envelope), its corners on curves along them, its
 //     centre node anywhere, each move certified again. Then, for triangles still above, the local
@@ -22,12 +21,12 @@
 //     triangles get their P3 nodes and are certified, and the operation is kept only if fewer
 //     of them are uncertified than before, or all are and their worst energy went down (the
 //     linear mesh's journal takes a refused one back). Passes stop at the stop energy or after
-//     Options::max_smoothing_passes. The operations run after step 5.
+//     Options::max_smoothing_passes. These run after step 5's first attempt, which may leave a
+//     poor triangle.
 //  5. A straightened edge gets its free opposite corners moved out of the curve's way; failing
-//     that, it is fitted: bent towards the curve as far as its triangles stay certified. Neither
-//     may leave a triangle it changes above the stop energy and the worst of them before: no
-//     step of curving makes the mesh's worst energy worse. The distance left from every fitted
-//     or straight edge to its curve is recorded.
+//     that, it is fitted: bent towards the curve as far as its triangles stay certified and within
+//     the stop energy. The distance left from every fitted or straight edge to its curve is
+//     recorded.
 // High-order nodes are shared: one per edge position, one centre per triangle.
 #include <array>
 #include <functional>

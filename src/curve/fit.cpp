@@ -23,8 +23,7 @@ Vec2 edge_point(const Vec2& p0, const Vec2& p1, const Vec2& p2, const Vec2& p3, 
 
 // §4.2 step 5 for primary edge (a, b), whose triangles cannot be certified with the edge on its
 // curve. First the edge is put on its curve and the centre nodes and the free opposite corners
-// move (compass search on badness; then the centres on energy) until every triangle they change
-// is certified and no worse than the stop energy or the worst of them before; failing that, the edge's
+// move (compass search on badness) until both triangles are certified; failing that, the edge's
 // two inner nodes are fitted: the largest blend s·(curve) + (1 − s)·(chord) with both triangles
 // certified and within the stop energy (or the straight edge's), s by bisection (the
 // least-squares fit to the curve along the one direction in which the straight edge is known to
@@ -45,28 +44,10 @@ void Builder::fit(int a, int b) {
   std::sort(touched.begin(), touched.end());
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
   const Snapshot saved = snapshot(touched);
-  // No outcome may leave a triangle it changes above the stop energy and above the worst of
-  // those triangles now: the bare certificate would accept an element next to degenerate.
-  const auto bound = [&](const std::vector<int>& changed) {
-    double allowed = o_.stop_amips;
-    for (int t : changed) allowed = std::max(allowed, energy(t));
-    return allowed;
-  };
-  const auto within = [&](const std::vector<int>& changed, double allowed) {
-    for (int t : changed)
-      if (!(energy(t) <= allowed)) return false;
-    return true;
-  };
-  const double allowed_touched = bound(touched), allowed = bound(triangles);
-  std::vector<double> scaled;
-  for (int t : touched) scaled.push_back(scaled_[t]);
-  const int moves = s_.smoothing_moves;
   std::vector<Vec2> positions;
   for (int v : movable) positions.push_back(m.point(v));
   const auto undo = [&] {
     restore(saved);
-    for (std::size_t k = 0; k < touched.size(); ++k) scaled_[touched[k]] = scaled[k];
-    s_.smoothing_moves = moves;
     for (std::size_t k = 0; k < movable.size(); ++k) m.set_position(movable[k], positions[k]);
   };
 
@@ -80,16 +61,20 @@ void Builder::fit(int a, int b) {
     m.set_position(v, x);  // the next corner's orientation checks see this one where it is now
   }
   for (int t : triangles) choose_centre_of(t);
-  if (!within(touched, allowed_touched))
-    for (int t : triangles) smooth_centre(t);
-  if (within(touched, allowed_touched) && certify_all(touched)) return;
+  if (certify_all(touched)) return;
   undo();
   curved_[key] = false;
 
   // The fit: the largest blend towards the curve with both triangles certified and no worse
   // than the stop energy or the straight edge's (the bare validity limit would leave an element
   // next to degenerate there).
-  const auto acceptable = [&] { return within(triangles, allowed) && certify_all(touched); };
+  double allowed = o_.stop_amips;
+  for (int t : triangles) allowed = std::max(allowed, energy(t));
+  const auto acceptable = [&] {
+    for (int t : triangles)
+      if (!(energy(t) <= allowed)) return false;
+    return certify_all(touched);
+  };
   // (Not a structured binding: the lambda below uses them, which clang before 16 refuses.)
   const std::pair<int, int> inner = edge_nodes(lo, hi);
   const int first = inner.first, second = inner.second;

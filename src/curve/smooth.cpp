@@ -165,10 +165,8 @@ int Builder::smooth_curve_corner(int v) {
 
 // Moves primary vertex v, still off its curve, to its closest point on the curve (between its
 // two curve neighbours); its edges along the curve become curved where their other end is on
-// the curve too. Where that leaves a triangle above the stop energy, its free and secondary
-// neighbours and its triangles' centres are smoothed. Kept only if the corners' triangles stay
-// counter-clockwise, every changed triangle is certified and none is worse than the stop energy
-// or the worst of them before.
+// the curve too. Kept only if the corners' triangles stay counter-clockwise and every changed
+// triangle is certified.
 int Builder::project(int v) {
   TriMesh& m = out_.linear;
   const mesh::VertexTag tag0 = m.tag(v);
@@ -180,51 +178,23 @@ int Builder::project(int v) {
   const double t = std::clamp(curve.t0 + cp.t * (curve.t1 - curve.t0), lo + margin, hi - margin);
   const Vec2 p = curve.eval(t);
   if (!mesh::star_valid_at(m, v, p)) return 0;
-  const std::vector<int> star = m.triangles_of(v);
-  // Everything that can change: v's star, and the stars of the neighbours that may move.
-  std::vector<int> movable, region = star;
-  for (int w : m.neighbours(v))
-    if (const auto kind = m.tag(w).kind; kind == mesh::VertexKind::free || kind == mesh::VertexKind::secondary) {
-      movable.push_back(w);
-      region.insert(region.end(), m.triangles_of(w).begin(), m.triangles_of(w).end());
-    }
-  std::sort(region.begin(), region.end());
-  region.erase(std::unique(region.begin(), region.end()), region.end());
-  const auto worst_of = [&](const std::vector<int>& triangles) {
-    double worst = 0;
-    for (int u : triangles) worst = std::max(worst, energy(u));
-    return worst;
-  };
-  const double allowed = std::max(o_.stop_amips, worst_of(region));
-  const Snapshot saved = snapshot(region);
-  std::vector<double> scaled;
-  for (int u : region) scaled.push_back(scaled_[u]);
-  std::vector<Vec2> positions;
-  for (int w : movable) positions.push_back(m.point(w));
-  const int moves = s_.smoothing_moves;
+  const auto& star = m.triangles_of(v);
+  const Snapshot saved = snapshot(star);
   const mesh::EdgeFeature fx = *m.feature(v, n.x), fy = *m.feature(v, n.y);
   mesh::VertexTag tag = tag0;
   tag.on_curve = true;
   m.set_tag(v, tag);
   for (int w : {n.x, n.y}) curved_[mesh::edge_key(v, w)] = followable(m, v, w);
   place_on_curve_at(v, n, t);
-  m.set_position(v, p);
-  if (!(worst_of(star) <= allowed)) {
-    for (int w : movable) s_.smoothing_moves += move_corner(w);
-    for (int u : star) s_.smoothing_moves += smooth_centre(u);
-  }
-  if (!(worst_of(region) <= allowed) || !certify_all(star)) {
+  if (!certify_all(star)) {
     restore(saved);
-    for (std::size_t k = 0; k < region.size(); ++k) scaled_[region[k]] = scaled[k];
-    for (std::size_t k = 0; k < movable.size(); ++k) m.set_position(movable[k], positions[k]);
-    s_.smoothing_moves = moves;
-    m.set_position(v, at(v));
     m.set_tag(v, tag0);
     m.set_feature(v, n.x, fx);
     m.set_feature(v, n.y, fy);
     for (int w : {n.x, n.y}) curved_[mesh::edge_key(v, w)] = false;
     return 0;
   }
+  m.set_position(v, p);
   return 1;
 }
 
