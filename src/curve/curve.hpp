@@ -102,7 +102,6 @@ struct CurvedMesh {
 // that best value for the best k (6.75 at 10°, 13.3 at 5°, 20 at about 3.3°).
 double wedge_amips_bound(double wedge);
 
-
 // The wedges of a finished curved mesh (corner directions from the P3 nodes), with `amips` each
 // triangle's energy (geometry::p3_max_amips) and stop_amips the curved stop energy.
 WedgeStats wedges(const CurvedMesh& mesh, const std::vector<double>& amips, double stop_amips);
