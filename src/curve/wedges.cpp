@@ -90,8 +90,9 @@ WedgeStats wedges(const CurvedMesh& mesh, const std::vector<double>& amips, doub
       }
       for (double a : lines)
         if (const double w = turn(from, a); w > 0 && w < wedge) wedge = w;
-      bound[c.t] = std::max(bound[c.t], wedge_amips_bound(wedge));
-      if (wedge < s.smallest_wedge) s.smallest_wedge = wedge, s.smallest_wedge_bound = wedge_amips_bound(wedge);
+      const double b = wedge_amips_bound(wedge);
+      bound[c.t] = std::max(bound[c.t], b);
+      if (wedge < s.smallest_wedge) s.smallest_wedge = wedge, s.smallest_wedge_bound = b;
     }
   }
   for (std::size_t t = 0; t < n; ++t) {
