@@ -62,7 +62,11 @@ class Builder {
     for (int i = 0; i < 10; ++i) p[i] = out_.nodes[out_.triangles[t][i]];
     return p;
   }
-  double energy(int t) const { return geometry::p3_max_amips(nodes_of(t)); }
+  // Triangle t's curved energy (geometry::p3_max_amips): exact below `bound`, at least `bound`
+  // otherwise.
+  double energy(int t, double bound = std::numeric_limits<double>::infinity()) const {
+    return geometry::p3_max_amips(nodes_of(t), bound);
+  }
 
   // ----- curve.cpp ------------------------------------------------------------------------------
   void finish();
@@ -105,11 +109,16 @@ class Builder {
   int smooth_corner(int v);
   int smooth_centre(int t);
 
-  // The largest of `measure` (energy, badness) over v's triangles.
+  // The largest of `measure(t, bound)` (energy, badness) over v's triangles: exact below
+  // `bound`, at least `bound` otherwise (it stops at the first triangle that reaches it).
   template <class Measure>
-  double star_worst(int v, const Measure& measure) const {
+  double star_worst(int v, const Measure& measure,
+                    double bound = std::numeric_limits<double>::infinity()) const {
     double worst = 0;
-    for (int t : out_.linear.triangles_of(v)) worst = std::max(worst, measure(t));
+    for (int t : out_.linear.triangles_of(v)) {
+      worst = std::max(worst, measure(t, bound));
+      if (worst >= bound) break;
+    }
     return worst;
   }
 
@@ -122,28 +131,29 @@ class Builder {
     double shortest = std::numeric_limits<double>::infinity();
     for (int w : m.neighbours(v)) shortest = std::min(shortest, (m.point(w) - m.point(v)).norm());
     const Snapshot saved = snapshot(m.triangles_of(v));
-    return compass_search(at(v), 0.25 * shortest, [&](const Vec2& p) {
+    return compass_search(at(v), 0.25 * shortest, [&](const Vec2& p, double bound) {
       if (!mesh::star_valid_at(m, v, p) || !mesh::secondary_edges_inside(m, c_, v, p))
         return std::numeric_limits<double>::infinity();
       place_corner(v, p);
-      const double worst = star_worst(v, measure);
+      const double worst = star_worst(v, measure, bound);
       restore(saved);
       return worst;
     });
   }
 
   // Compass search: from x0 with the first step h, in 8 directions, halving h when none lowers
-  // `objective`; returns the best point found.
+  // `objective`; returns the best point found. objective(x, bound) is called with the best value
+  // so far as `bound` and need only be exact below it.
   template <class Objective>
   Vec2 compass_search(const Vec2& x0, double h, const Objective& objective) const {
     Vec2 x = x0;
-    double best = objective(x0);
+    double best = objective(x0, std::numeric_limits<double>::infinity());
     for (int halvings = 0; halvings < 12;) {
       bool improved = false;
       for (int d = 0; d < 8; ++d) {
         const double angle = d * std::numbers::pi / 4;
         const Vec2 y = x + h * Vec2(std::cos(angle), std::sin(angle));
-        const double e = objective(y);
+        const double e = objective(y, best);
         if (e < best) best = e, x = y, improved = true;
       }
       if (!improved) h *= 0.5, ++halvings;

@@ -56,7 +56,7 @@ void Builder::fit(int a, int b) {
   place_on_curve(lo, hi);
   for (int t : triangles) choose_centre_of(t);
   for (int v : movable) {
-    const Vec2 x = search_corner(v, [&](int t) { return badness(t); });
+    const Vec2 x = search_corner(v, [&](int t, double) { return badness(t); });
     place_corner(v, x);
     m.set_position(v, x);  // the next corner's orientation checks see this one where it is now
   }

@@ -122,10 +122,8 @@ bool Builder::choose_centre(geometry::P3Nodes& p, int& choice, double& scaled) c
 // longest side (lower is better either way; only a certificate decides validity).
 double Builder::badness(int t) const {
   const geometry::P3Nodes p = nodes_of(t);
-  double lo = std::numeric_limits<double>::infinity();
-  for (int j = 0; j <= 6; ++j)
-    for (int k = 0; j + k <= 6; ++k) lo = std::min(lo, geometry::p3_jacobian(p, j / 6.0, k / 6.0).determinant());
-  if (lo > 0) return geometry::p3_max_amips(p);
+  const auto [lo, max_amips] = geometry::p3_lattice_values(p);
+  if (lo > 0) return max_amips;
   double side = 0;
   for (int i = 0; i < 3; ++i) side = std::max(side, (p[i] - p[(i + 1) % 3]).squaredNorm());
   return 1e12 - (side > 0 ? lo / side : -1e6);

@@ -126,7 +126,7 @@ int Builder::smooth_curve_corner(int v) {
   CurveNeighbours n;
   if (!curve_neighbours(v, n)) return 0;
   const auto& star = m.triangles_of(v);
-  const auto energy_of = [&](int t) { return energy(t); };
+  const auto energy_of = [&](int t, double bound) { return energy(t, bound); };
   const Snapshot saved = snapshot(star);
   const mesh::EdgeFeature fx = *m.feature(v, n.x), fy = *m.feature(v, n.y);
   const auto undo = [&] {
@@ -137,11 +137,11 @@ int Builder::smooth_curve_corner(int v) {
   };
   const mesh::SectionCurve& curve = c_.sections[tag0.section];
   const double lo = std::min(n.tx, n.ty), hi = std::max(n.tx, n.ty), margin = 1e-3 * (hi - lo);
-  const auto objective = [&](double t) {
+  const auto objective = [&](double t, double bound) {
     if (!(t > lo + margin && t < hi - margin) || !mesh::star_valid_at(m, v, curve.eval(t)))
       return std::numeric_limits<double>::infinity();
     place_on_curve_at(v, n, t);
-    const double e = star_worst(v, energy_of);
+    const double e = star_worst(v, energy_of, bound);
     undo();
     return e;
   };
@@ -150,7 +150,7 @@ int Builder::smooth_curve_corner(int v) {
   for (int halvings = 0; halvings < 12;) {
     bool improved = false;
     for (const double step : {h, -h})
-      if (const double e = objective(t + step); e < best) best = e, t += step, improved = true;
+      if (const double e = objective(t + step, best); e < best) best = e, t += step, improved = true;
     if (!improved) h *= 0.5, ++halvings;
   }
   if (t == tag0.t || !(best < before)) return 0;
@@ -201,14 +201,14 @@ int Builder::project(int v) {
 int Builder::smooth_corner(int v) {
   TriMesh& m = out_.linear;
   const auto& star = m.triangles_of(v);
-  const auto energy_of = [&](int t) { return energy(t); };
+  const auto energy_of = [&](int t, double bound) { return energy(t, bound); };
   const Snapshot saved = snapshot(star);  // everything the move can change
   const Vec2 x0 = m.point(v);
   const double before = star_worst(v, energy_of);
   const Vec2 x = search_corner(v, energy_of);
   if (x == x0) return 0;
   place_corner(v, x);
-  if (!(star_worst(v, energy_of) < before) || !certify_all(star)) {
+  if (!(star_worst(v, energy_of, before) < before) || !certify_all(star)) {
     restore(saved);
     return 0;
   }
@@ -223,9 +223,9 @@ int Builder::smooth_centre(int t) {
   geometry::P3Nodes q = nodes_of(t);
   double size = 0;
   for (int i = 0; i < 3; ++i) size = std::max(size, (q[i] - q[(i + 1) % 3]).norm());
-  const Vec2 x = compass_search(x0, 0.05 * size, [&](const Vec2& p) {
+  const Vec2 x = compass_search(x0, 0.05 * size, [&](const Vec2& p, double bound) {
     q[9] = p;
-    return geometry::p3_max_amips(q);
+    return geometry::p3_max_amips(q, bound);
   });
   q[9] = x;
   if (x == x0 || !(geometry::p3_max_amips(q) < before)) return 0;

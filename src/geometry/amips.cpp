@@ -6,22 +6,6 @@
 
 namespace curvemesh::geometry {
 
-namespace {
-
-// With e1 = b - a, e2 = c - a and f = 2 e2 - e1, J's columns are e1 and f / √3, so
-// ‖J‖² = |e1|² + |f|²/3 and det J = (2/√3) det[e1 e2]: E = N / D with N = 3|e1|² + |f|² and
-// D = 2√3 det[e1 e2]. Everything is computed from differences, so it is as accurate at 1e-6 as at 1e6.
-constexpr double kTwoSqrt3 = 3.4641016151377544;  // 2√3
-
-}  // namespace
-
-double amips_of_edges(const Vec2& e1, const Vec2& e2) {
-  const Vec2 f = 2 * e2 - e1;
-  const double det = cross(e1, e2);
-  if (!(det > 0)) return std::numeric_limits<double>::infinity();
-  return (3 * e1.squaredNorm() + f.squaredNorm()) / (kTwoSqrt3 * det);
-}
-
 double amips(const Vec2& a, const Vec2& b, const Vec2& c) { return amips_of_edges(b - a, c - a); }
 
 AmipsDerivatives& AmipsDerivatives::operator+=(const AmipsDerivatives& o) {

@@ -7,6 +7,7 @@
 // flattens; it does not depend on size, position or rotation. Counter-clockwise is valid: E = +∞
 // when det J <= 0.
 #include <Eigen/Core>
+#include <limits>
 
 #include "geometry/vec2.hpp"
 
@@ -16,7 +17,17 @@ double amips(const Vec2& a, const Vec2& b, const Vec2& c);
 // The same energy of the linear map that takes the reference triangle (0,0), (1,0), (0,1) to
 // edges e1 and e2: amips(a, b, c) is amips_of_edges(b - a, c - a); a curved element's energy at a
 // point is that of its Jacobian's columns.
-double amips_of_edges(const Vec2& e1, const Vec2& e2);
+// With f = 2 e2 − e1, J's columns are e1 and f / √3, so ‖J‖² = |e1|² + |f|²/3 and
+// det J = (2/√3) det[e1 e2]: E = N / D with N = 3|e1|² + |f|² and D = 2√3 det[e1 e2]. Everything
+// is computed from differences, so it is as accurate at 1e-6 as at 1e6. Inline: the curved
+// energy evaluates it at 28 points per triangle.
+inline constexpr double kTwoSqrt3 = 3.4641016151377544;  // 2√3
+inline double amips_of_edges(const Vec2& e1, const Vec2& e2) {
+  const Vec2 f = 2 * e2 - e1;
+  const double det = cross(e1, e2);
+  if (!(det > 0)) return std::numeric_limits<double>::infinity();
+  return (3 * e1.squaredNorm() + f.squaredNorm()) / (kTwoSqrt3 * det);
+}
 
 struct AmipsDerivatives {
   double energy = 0;

@@ -48,11 +48,56 @@ double p3_amips(const P3Nodes& nodes, double u, double v) {
   return amips_of_edges(J.col(0), J.col(1));
 }
 
-double p3_max_amips(const P3Nodes& nodes) {
-  double e = 0;
+namespace {
+
+// The basis gradients at the 28 points (j/6, k/6), j + k ≤ 6, of the order-6 lattice, in the
+// order p3_max_amips visits them: evaluated once, at compile time, with the same arithmetic as at
+// run time, so the energies are bit for bit those of p3_amips at the same points.
+using LatticeGradients = std::array<std::array<std::array<double, 2>, 10>, 28>;
+constexpr LatticeGradients lattice_gradients() {
+  LatticeGradients g{};
+  int n = 0;
   for (int j = 0; j <= 6; ++j)
-    for (int k = 0; j + k <= 6; ++k) e = std::max(e, p3_amips(nodes, j / 6.0, k / 6.0));
+    for (int k = 0; j + k <= 6; ++k) g[n++] = p3_basis_gradients(j / 6.0, k / 6.0);
+  return g;
+}
+constexpr LatticeGradients kLatticeGradients = lattice_gradients();
+
+// J = Σ node_i ⊗ ∇ℓ_i at a lattice point, summed in p3_jacobian's order; its columns x_u, x_v.
+struct LatticeJacobian {
+  Vec2 xu, xv;
+};
+LatticeJacobian lattice_jacobian(const P3Nodes& nodes, const std::array<std::array<double, 2>, 10>& d) {
+  double xu = 0, yu = 0, xv = 0, yv = 0;
+  for (int i = 0; i < 10; ++i) {
+    xu += nodes[i].x() * d[i][0];
+    yu += nodes[i].y() * d[i][0];
+    xv += nodes[i].x() * d[i][1];
+    yv += nodes[i].y() * d[i][1];
+  }
+  return {Vec2(xu, yu), Vec2(xv, yv)};
+}
+
+}  // namespace
+
+double p3_max_amips(const P3Nodes& nodes, double bound) {
+  double e = 0;
+  for (const auto& d : kLatticeGradients) {
+    const LatticeJacobian J = lattice_jacobian(nodes, d);
+    e = std::max(e, amips_of_edges(J.xu, J.xv));
+    if (e >= bound) break;
+  }
   return e;
+}
+
+P3LatticeValues p3_lattice_values(const P3Nodes& nodes) {
+  P3LatticeValues out{std::numeric_limits<double>::infinity(), 0};
+  for (const auto& d : kLatticeGradients) {
+    const LatticeJacobian J = lattice_jacobian(nodes, d);
+    out.min_det = std::min(out.min_det, cross(J.xu, J.xv));
+    out.max_amips = std::max(out.max_amips, amips_of_edges(J.xu, J.xv));
+  }
+  return out;
 }
 
 namespace {

@@ -21,6 +21,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
+#include <limits>
 
 #include "geometry/vec2.hpp"
 
@@ -60,7 +61,15 @@ Eigen::Matrix2d p3_jacobian(const P3Nodes& nodes, double u, double v);
 double p3_amips(const P3Nodes& nodes, double u, double v);
 // Its largest value over the 28 points of the order-6 lattice (corners, edges and inside): the
 // quality measure of a curved triangle (validity is certify_jacobian's business, not this one's).
-double p3_max_amips(const P3Nodes& nodes);
+// With a `bound`, it may stop at the first value not below the bound and return that value: the
+// result is exact when below the bound and at least the bound otherwise, which is all a search
+// that only keeps improvements on the bound needs.
+double p3_max_amips(const P3Nodes& nodes, double bound = std::numeric_limits<double>::infinity());
+// The smallest det J and the largest AMIPS over the same 28 points, in one pass.
+struct P3LatticeValues {
+  double min_det = 0, max_amips = 0;
+};
+P3LatticeValues p3_lattice_values(const P3Nodes& nodes);
 
 // Exact conversion of double nodes to rationals (every finite double is rational).
 P3NodesT<mpq_class> to_exact(const P3Nodes& nodes);
@@ -97,7 +106,7 @@ PointT<T> p3_map(const P3NodesT<T>& nodes, const T& u, const T& v) {
 
 // ∂ℓ_i/∂u and ∂ℓ_i/∂v of Appendix C's basis, with s = u + v.
 template <class T>
-std::array<std::array<T, 2>, 10> p3_basis_gradients(const T& u, const T& v) {
+constexpr std::array<std::array<T, 2>, 10> p3_basis_gradients(const T& u, const T& v) {
   const T s = u + v, one(1), half = T(1) / T(2), n9h = T(9) / T(2);
   const T g = T(3) * s * s - T(5) * s + T(2);  // (s − 1)(3s − 2)
   const T dg = T(6) * s - T(5);

@@ -326,5 +326,43 @@ TEST(P3Amips, BendingAnEdgeRaisesTheEnergyAndFoldingMakesItInfinite) {
   EXPECT_EQ(p3_max_amips(folded), std::numeric_limits<double>::infinity());
 }
 
+// The lattice sums are the ones p3_amips and p3_jacobian make point by point, so the values must
+// be the same bits, not merely close; and a bound may only cut the work, never a value below it.
+TEST(P3Amips, LatticeValuesAndBoundsAgreeBitForBitWithThePointwiseMaps) {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> u(-1, 1), jitter(-0.2, 0.2);
+  int folded = 0, cut = 0;
+  for (int trial = 0; trial < 500; ++trial) {
+    Vec2 a(u(rng), u(rng)), b(u(rng), u(rng)), c(u(rng), u(rng));
+    if ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x() < 0) std::swap(b, c);
+    P3Nodes n = p3_straight_nodes(a, b, c);
+    for (int i = 3; i < 10; ++i) n[i] += Vec2(jitter(rng), jitter(rng));
+    double max_amips = 0, min_det = std::numeric_limits<double>::infinity();
+    for (int j = 0; j <= 6; ++j)
+      for (int k = 0; j + k <= 6; ++k) {
+        max_amips = std::max(max_amips, p3_amips(n, j / 6.0, k / 6.0));
+        min_det = std::min(min_det, p3_jacobian(n, j / 6.0, k / 6.0).determinant());
+      }
+    folded += !(min_det > 0);
+    EXPECT_EQ(p3_max_amips(n), max_amips) << "trial " << trial;
+    const P3LatticeValues values = p3_lattice_values(n);
+    EXPECT_EQ(values.max_amips, max_amips) << "trial " << trial;
+    EXPECT_EQ(values.min_det, min_det) << "trial " << trial;
+    for (double bound : {2.5, 5.0, 20.0, 1e3}) {
+      const double e = p3_max_amips(n, bound);
+      if (max_amips < bound) {
+        EXPECT_EQ(e, max_amips) << "trial " << trial << " bound " << bound;
+      } else {
+        EXPECT_GE(e, bound) << "trial " << trial << " bound " << bound;
+        EXPECT_LE(e, max_amips) << "trial " << trial << " bound " << bound;
+        cut += e < max_amips;
+      }
+    }
+  }
+  EXPECT_GT(folded, 20);  // both valid and folded maps were tried
+  EXPECT_LT(folded, 480);
+  EXPECT_GT(cut, 20);  // and the bound did stop early
+}
+
 }  // namespace
 }  // namespace curvemesh::geometry
