@@ -1,6 +1,8 @@
 #include "geometry/predicates.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Interval_nt.h>
+#include <CGAL/gmpxx.h>
 
 #include <cmath>
 #include <cstdint>
@@ -18,6 +20,14 @@ int orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
 }
 
 int orientation(const ExactPoint& a, const ExactPoint& b, const ExactPoint& c) {
+  {  // An interval filter first: the rationals' arithmetic (a gcd per operation) only when it fails.
+    CGAL::Protect_FPU_rounding<true> upward;
+    using I = CGAL::Interval_nt<false>;
+    const auto iv = [](const mpq_class& q) { return I(CGAL::to_interval(q)); };
+    const I det = (iv(b.x) - iv(a.x)) * (iv(c.y) - iv(a.y)) - (iv(b.y) - iv(a.y)) * (iv(c.x) - iv(a.x));
+    if (det.inf() > 0) return 1;
+    if (det.sup() < 0) return -1;
+  }
   const mpq_class det = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
   return sgn(det);
 }
