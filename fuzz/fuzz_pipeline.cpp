@@ -130,10 +130,11 @@ struct Soup {
 };
 
 // With FUZZ_PIPELINE_SVG=FILE in the environment an input is not meshed: its soup is written
-// there as an SVG drawing (no viewBox, every coordinate to 17 digits: the same doubles), so that
-// a finding can be run with `curvemesh mesh FILE` and become a test, and a corpus can be timed
-// without sanitizers (fuzz/pipeline-replay).
-bool dump(const std::vector<Curve>& curves) {
+// there as an SVG drawing (no viewBox, every coordinate to 17 digits: the same doubles), with the
+// edge length the input picked in a first-line comment (`curvemesh-options: -l 0.1`), so that a
+// finding can be run with `curvemesh mesh FILE -l L` and become a test, and a corpus can be timed
+// without sanitizers (fuzz/pipeline-replay reads the comment).
+bool dump(const std::vector<Curve>& curves, double edge_length) {
   const char* path = std::getenv("FUZZ_PIPELINE_SVG");
   if (!path) return false;
   std::FILE* f = std::fopen(path, "w");
@@ -141,7 +142,7 @@ bool dump(const std::vector<Curve>& curves) {
     std::perror(path);
     std::abort();
   }
-  std::fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\">\n");
+  std::fprintf(f, "<!-- curvemesh-options: -l %.17g -->\n<svg xmlns=\"http://www.w3.org/2000/svg\">\n", edge_length);
   for (const Curve& c : curves)
     std::fprintf(f, "<path fill=\"none\" stroke=\"black\" d=\"M%.17g %.17gC%.17g %.17g %.17g %.17g %.17g %.17g\"/>\n",
                  c[0].x(), c[0].y(), c[1].x(), c[1].y(), c[2].x(), c[2].y(), c[3].x(), c[3].y());
@@ -167,7 +168,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   parameters.edge_length_rel = std::array{1.0 / 20, 1.0 / 10, 1.0 / 5, 1.0 / 2}[in.ConsumeIntegralInRange<int>(0, 3)];
   while (in.remaining_bytes() > 0 && soup.curves.size() < kMaxCurves) soup.add();
   if (soup.curves.empty()) return 0;
-  if (dump(soup.curves)) return 0;
+  if (dump(soup.curves, parameters.edge_length_rel)) return 0;
   curvemesh::pipeline::Result result;
   try {
     result = curvemesh::pipeline::run(curvemesh::pipeline::Source::beziers(soup.curves, "fuzz"), parameters);
