@@ -272,22 +272,52 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
   // that still cannot be rounded (it rounds onto a neighbour: features closer than a double can
   // tell) is collapsed into its nearest neighbour that takes it, whatever the energy: a mesh with
   // a vertex that has no double position cannot be written, and the curve stage's operations
-  // improve what the collapse leaves.
-  bool collapsed = false;
-  for (int v = 0; v < m.vertex_count(); ++v) {
-    if (!m.has_exact(v) || m.triangles_of(v).empty() || mesh::round_vertex(m, c, v)) continue;
+  // improve what the collapse leaves. When no neighbour takes it, what stops it is a neighbour
+  // flat with it to round-off (a free vertex lying on a secondary line through it, say): its free
+  // and secondary neighbours, nearest first, are collapsed into it, whatever the energy, until it
+  // rounds or goes.
+  const auto by_distance_to = [&](int v) {
     std::vector<int> near = m.neighbours(v);
     std::stable_sort(near.begin(), near.end(), [&](int x, int y) {
       return (m.point(x) - m.point(v)).squaredNorm() < (m.point(y) - m.point(v)).squaredNorm();
     });
-    for (int w : near)
+    return near;
+  };
+  bool collapsed = false;
+  const auto settle = [&](int v) {
+    if (mesh::round_vertex(m, c, v)) return true;
+    for (int w : by_distance_to(v))
       if (mesh::collapse_edge(m, c, v, w, std::numeric_limits<double>::infinity())) {
         ++s.collapses;
         collapsed = true;
-        break;
+        return true;
       }
+    return false;
+  };
+  for (int v = 0; v < m.vertex_count(); ++v) {
+    if (!m.has_exact(v) || m.triangles_of(v).empty() || settle(v)) continue;
+    for (int w : by_distance_to(v)) {
+      const mesh::VertexKind k = m.tag(w).kind;
+      if (k != mesh::VertexKind::free && k != mesh::VertexKind::secondary) continue;
+      if (!mesh::collapse_edge(m, c, w, v, std::numeric_limits<double>::infinity())) continue;
+      ++s.collapses;
+      collapsed = true;
+      if (settle(v)) break;
+    }
   }
-  if (collapsed) m.compact();  // the collapsed vertices (and their exact positions) go
+  if (collapsed) {
+    // What those collapses flattened (a vertex moved onto a secondary line with others on it to
+    // round-off), released and swapped as in the iterations.
+    for (int t = 0; t < m.triangle_slots(); ++t) {
+      if (!m.alive(t)) continue;
+      const auto tri = m.triangle(t);
+      if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) <= o.stop_max_amips) continue;
+      for (int i = 0; i < 3; ++i) s.released += mesh::release_secondary_edge(m, c, tri[i], tri[(i + 1) % 3]);
+    }
+    for (const Edge& e : all_edges(m))
+      if (is_edge(m, e.a, e.b) && mesh::swap_edge(m, e.a, e.b)) ++s.swaps;
+    m.compact();  // the collapsed vertices (and their exact positions) go
+  }
   s.exact_left = m.exact_vertex_count();
   for (int v = 0; v < m.vertex_count(); ++v)
     if (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) ++s.unprojected;

@@ -76,4 +76,27 @@ TEST(PipelineExtremes, FoundByFuzzingCoincidentCubicsAt1e12) {
   expect_certified(pipeline::run(pipeline::Source::svg(svg, "fuzz-1"), {}));
 }
 
+// A crossing of a curve and a secondary segment within round-off of the curve's end, at l = 1/10:
+// its exact position neither rounds (its nearest double is the curve's end) nor collapses (a free
+// vertex lies on the segment through it to round-off, and the collapse would invert a triangle).
+// The free vertex is collapsed into it first; the segment left flat through two more vertices is
+// released onto the path through them and swapped away.
+TEST(PipelineExtremes, FoundByFuzzingACrossingWithinRoundOffOfACurveEnd) {
+  const std::string svg =
+    R"(<svg xmlns="http://www.w3.org/2000/svg">)"
+    R"(<path fill="none" stroke="black" d="M-9.7653198242187499e-07 -7.6406860351562501e-07C-5.9414672851562501e-07 -9.9218749999999998e-07 -9.0469360351562493e-07 -9.3743896484374996e-07 -5.2499389648437499e-07 2.3193359374999997e-09"/>)"
+    R"(<path fill="none" stroke="black" d="M-2.9998779296875001e-07 8.99993896484375e-07C2.9998779296875001e-07 2.6406860351562498e-07 -8.99993896484375e-07 -1.9570922851562498e-07 -6.0131835937499998e-07 -9.6508789062499998e-07"/>)"
+    R"(<path fill="none" stroke="black" d="M-9.2700759916889806e-07 -7.9433161527174381e-07C-4.1740285257093201e-07 -8.4834103127491245e-07 9.2201894027033937e-08 -9.023504472780813e-07 6.0180664062499994e-07 -9.5635986328124993e-07"/>)"
+    R"(<path fill="none" stroke="black" d="M-2.9998779296874e-07 8.9999389648436504e-07C2.9998779296876001e-07 2.6406860351561497e-07 -8.9999389648436504e-07 -1.9570922851563499e-07 -6.0131835937499003e-07 -9.6508789062500993e-07"/>)"
+    R"(<path fill="none" stroke="black" d="M1.5215539362679472e-07 -9.0870449621963044e-07C2.3476822791265482e-07 -9.0580096297454536e-07 3.1738106219851486e-07 -9.0289742972946018e-07 3.9999389648437497e-07 -8.99993896484375e-07"/>)"
+    R"(<path fill="none" stroke="black" d="M3.3201589242607674e-07 -9.2776664304427828e-07C4.2134596278925949e-07 -3.1903192869618556e-07 5.1067603315244213e-07 2.8970278565190721e-07 6.0000610351562494e-07 8.9843749999999992e-07"/>)"
+    R"(<path fill="none" stroke="black" d="M-6.0119628906249996e-07 6.0177612304687501e-07C9.0072631835937499e-07 0 -9.9963378906250001e-07 -9.4299316406249991e-07 9.0393066406249991e-07 9.3594360351562495e-07"/>)"
+    R"(<path fill="none" stroke="black" d="M-9.2700759916889806e-07 -7.9433161527174381e-07C-4.1740285257093201e-07 -8.4834103127491245e-07 9.2201894027033937e-08 -9.023504472780813e-07 6.0180664062499994e-07 -9.5635986328124993e-07"/>)"
+    R"(<path fill="none" stroke="black" d="M3.2002519250612465e-07 -9.2649583325596845e-07C4.1335216284262476e-07 -3.1766592334252063e-07 5.0667913317912488e-07 2.9116398657092718e-07 6.0000610351562494e-07 8.99993896484375e-07"/>)"
+    R"(</svg>)";
+  pipeline::Parameters parameters;
+  parameters.edge_length_rel = 1.0 / 10;
+  expect_certified(pipeline::run(pipeline::Source::svg(svg, "fuzz-2"), parameters));
+}
+
 }  // namespace
