@@ -20,10 +20,8 @@ bool star_valid_at(const TriMesh& m, int v, const Vec2& p) {
 
 bool secondary_edges_inside(const TriMesh& m, const Constraints& c, int v, const Vec2& p) {
   if (m.tag(v).kind == VertexKind::free) return true;  // no tagged edge at all
-  for (int x : m.neighbours(v)) {
-    const EdgeFeature* f = m.feature(v, x);
-    if (f && f->kind == EdgeKind::secondary && !c.envelope.contains(p, m.point(x))) return false;
-  }
+  for (const TaggedEdge& e : m.tagged_edges(v))
+    if (e.feature.kind == EdgeKind::secondary && !c.envelope.contains(p, m.point(e.other))) return false;
   return true;
 }
 

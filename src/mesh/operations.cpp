@@ -101,11 +101,12 @@ struct CurveNeighbours {
 bool curve_neighbours(const TriMesh& m, int v, CurveNeighbours& out) {
   const VertexTag& tag = m.tag(v);
   int found = 0;
-  for (int w : m.neighbours(v)) {
-    const EdgeFeature* f = m.feature(v, w);
-    if (!f || f->kind != EdgeKind::primary || f->source != tag.section) continue;
-    if (found == 0) out.x = w, out.tx = param_at(*f, v, w, w);
-    else if (found == 1) out.y = w, out.ty = param_at(*f, v, w, w);
+  for (const TaggedEdge& e : m.tagged_edges(v)) {
+    const EdgeFeature& f = e.feature;
+    const int w = e.other;
+    if (f.kind != EdgeKind::primary || f.source != tag.section) continue;
+    if (found == 0) out.x = w, out.tx = param_at(f, v, w, w);
+    else if (found == 1) out.y = w, out.ty = param_at(f, v, w, w);
     ++found;
   }
   return found == 2;
@@ -135,11 +136,8 @@ bool try_curve_move(TriMesh& m, const Constraints& c, int v, const CurveNeighbou
 // The neighbours of a boundary vertex along its side.
 bool side_neighbours(const TriMesh& m, int v, int& x, int& y) {
   x = y = -1;
-  for (int w : m.neighbours(v)) {
-    const EdgeFeature* f = m.feature(v, w);
-    if (!f || f->kind != EdgeKind::boundary) continue;
-    (x < 0 ? x : y) = w;
-  }
+  for (const TaggedEdge& e : m.tagged_edges(v))
+    if (e.feature.kind == EdgeKind::boundary) (x < 0 ? x : y) = e.other;
   return x >= 0 && y >= 0;
 }
 
@@ -243,7 +241,7 @@ bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double en
       if (edge) return false;
   }
 
-  const std::vector<int> star = m.triangles_of(from);
+  const std::vector<int>& star = m.triangles_of(from);  // read before the mesh changes
   std::vector<int> removed, kept, opposite;
   for (int t : star) {
     const auto& tri = m.triangle(t);
@@ -271,10 +269,10 @@ bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double en
   };
   std::vector<Moved> moved;
   std::vector<int> merged;
-  for (int x : m.neighbours(from)) {
+  for (const TaggedEdge& e : m.tagged_edges(from)) {
+    const int x = e.other;
     if (x == to) continue;
-    const EdgeFeature* g = m.feature(from, x);
-    if (!g) continue;
+    const EdgeFeature* g = &e.feature;
     EdgeFeature h = *g;
     if (g->kind == EdgeKind::secondary && !c.envelope.contains(m.point(to), m.point(x))) return false;
     if (g->kind == EdgeKind::primary) {
@@ -534,8 +532,8 @@ bool release_secondary_edge(TriMesh& m, const Constraints& c, int a, int b) {
   for (int v : {a, b}) {
     if (m.tag(v).kind != VertexKind::secondary) continue;
     bool still = false;
-    for (int w : m.neighbours(v))
-      if (const EdgeFeature* g = m.feature(v, w); g && g->kind == EdgeKind::secondary) still = true;
+    for (const TaggedEdge& e : m.tagged_edges(v))
+      if (e.feature.kind == EdgeKind::secondary) still = true;
     if (!still) {
       VertexTag tag = m.tag(v);
       tag.kind = VertexKind::free;

@@ -12,6 +12,7 @@ int TriMesh::add_vertex(const Vec2& p, const VertexTag& tag) {
   vertex_tags_.push_back(tag);
   exact_index_.push_back(-1);
   vertex_triangles_.emplace_back();
+  tagged_.emplace_back();
   return vertex_count() - 1;
 }
 
@@ -74,21 +75,55 @@ void TriMesh::set_tag(int v, const VertexTag& tag) {
   vertex_tags_[v] = tag;
 }
 
+const EdgeFeature* TriMesh::feature(int a, int b) const {
+  for (const TaggedEdge& e : tagged_[a])
+    if (e.other == b) return &e.feature;
+  return nullptr;
+}
+
+void TriMesh::put_feature(int a, int b, const EdgeFeature& f) {
+  bool added = false;
+  for (const auto& [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
+    auto& list = tagged_[x];
+    const auto it = std::lower_bound(list.begin(), list.end(), y, [](const TaggedEdge& e, int v) { return e.other < v; });
+    if (it != list.end() && it->other == y) {
+      it->feature = f;
+    } else {
+      list.insert(it, {y, f});
+      added = true;
+    }
+  }
+  feature_count_ += added;
+}
+
+void TriMesh::erase_feature(int a, int b) {
+  bool erased = false;
+  for (const auto& [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
+    auto& list = tagged_[x];
+    const auto it = std::find_if(list.begin(), list.end(), [&](const TaggedEdge& e) { return e.other == y; });
+    if (it == list.end()) continue;
+    list.erase(it);
+    erased = true;
+  }
+  feature_count_ -= erased;
+}
+
 void TriMesh::set_feature(int a, int b, const EdgeFeature& f) {
   if (journal_open_) {
     const EdgeFeature* old = feature(a, b);
-    record({.kind = Change::Kind::feature, .key = edge_key(a, b), .feature = old ? std::optional(*old) : std::nullopt});
+    record({.kind = Change::Kind::feature, .lo = std::min(a, b), .hi = std::max(a, b),
+            .feature = old ? std::optional(*old) : std::nullopt});
   }
-  features_[edge_key(a, b)] = f;
+  put_feature(a, b, f);
 }
 
 void TriMesh::clear_feature(int a, int b) {
   if (journal_open_) {
     const EdgeFeature* old = feature(a, b);
     if (!old) return;
-    record({.kind = Change::Kind::feature, .key = edge_key(a, b), .feature = *old});
+    record({.kind = Change::Kind::feature, .lo = std::min(a, b), .hi = std::max(a, b), .feature = *old});
   }
-  features_.erase(edge_key(a, b));
+  erase_feature(a, b);
 }
 
 void TriMesh::open_journal() {
@@ -111,6 +146,7 @@ void TriMesh::rollback() {
         vertex_tags_.pop_back();
         exact_index_.pop_back();
         vertex_triangles_.pop_back();
+        tagged_.pop_back();
         break;
       case Change::Kind::add_triangle:
         unlink(triangle_slots() - 1);
@@ -135,24 +171,20 @@ void TriMesh::rollback() {
         vertex_tags_[c.index] = c.tag;
         break;
       case Change::Kind::feature:
-        if (c.feature) features_[c.key] = *c.feature;
-        else features_.erase(c.key);
+        if (c.feature) put_feature(c.lo, c.hi, *c.feature);
+        else erase_feature(c.lo, c.hi);
         break;
     }
   }
   journal_.clear();
 }
 
-const EdgeFeature* TriMesh::feature(int a, int b) const {
-  const auto it = features_.find(edge_key(a, b));
-  return it == features_.end() ? nullptr : &it->second;
-}
-
 std::vector<std::pair<std::array<int, 2>, EdgeFeature>> TriMesh::sorted_features() const {
   std::vector<std::pair<std::array<int, 2>, EdgeFeature>> out;
-  out.reserve(features_.size());
-  for (const auto& [key, f] : features_)
-    out.push_back({{static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu)}, f});
+  out.reserve(feature_count_);
+  for (int lo = 0; lo < vertex_count(); ++lo)
+    for (const TaggedEdge& e : tagged_[lo])
+      if (lo < e.other) out.push_back({{lo, e.other}, e.feature});
   std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   return out;
 }
@@ -222,22 +254,25 @@ std::vector<int> TriMesh::compact() {
   triangles.reserve(alive_triangles_);
   for (const auto& tri : triangles_)
     if (tri[0] >= 0) triangles.push_back({remap[tri[0]], remap[tri[1]], remap[tri[2]]});
-  std::unordered_map<std::uint64_t, EdgeFeature> features;
-  features.reserve(features_.size());
-  for (const auto& [key, f] : features_) {
-    const int a = remap[key >> 32], b = remap[key & 0xffffffffu];
-    if (a < 0 || b < 0) continue;
-    EdgeFeature g = f;
-    if ((a < b) != (static_cast<int>(key >> 32) < static_cast<int>(key & 0xffffffffu))) std::swap(g.t_lo, g.t_hi);
-    features[edge_key(a, b)] = g;
-  }
+  // The renumbering keeps the order of vertices: the lists stay sorted, and t_lo stays with the
+  // lower end.
+  std::vector<std::vector<TaggedEdge>> tagged(next);
+  int feature_count = 0;
+  for (int v = 0; v < n; ++v)
+    for (const TaggedEdge& e : tagged_[v]) {
+      const int a = remap[v], b = remap[e.other];
+      if (a < 0 || b < 0) continue;
+      tagged[a].push_back({b, e.feature});
+      feature_count += a < b;
+    }
 
   points_ = std::move(points);
   vertex_tags_ = std::move(tags);
   exact_index_ = std::move(exact_index);
   exact_points_ = std::move(exact_points);
   triangles_ = std::move(triangles);
-  features_ = std::move(features);
+  tagged_ = std::move(tagged);
+  feature_count_ = feature_count;
   vertex_triangles_.assign(next, {});
   for (int t = 0; t < triangle_slots(); ++t)
     for (int v : triangles_[t]) vertex_triangles_[v].push_back(t);
@@ -281,13 +316,19 @@ std::optional<std::string> TriMesh::structure_error() const {
         return err.str();
       }
     }
-  for (const auto& [key, f] : features_) {
-    const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
-    if (a >= vertex_count() || b >= vertex_count() || edge_triangles(a, b).empty()) {
-      err << "tagged edge (" << a << ", " << b << ") is not in the mesh";
-      return err.str();
+  for (int a = 0; a < vertex_count(); ++a)
+    for (const TaggedEdge& e : tagged_[a]) {
+      const int b = e.other;
+      if (b >= vertex_count() || edge_triangles(a, b).empty()) {
+        err << "tagged edge (" << a << ", " << b << ") is not in the mesh";
+        return err.str();
+      }
+      const EdgeFeature* back = feature(b, a);
+      if (!back || !(*back == e.feature)) {
+        err << "tagged edge (" << a << ", " << b << ") has another tag at " << b;
+        return err.str();
+      }
     }
-  }
   return std::nullopt;
 }
 

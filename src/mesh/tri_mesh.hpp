@@ -10,7 +10,6 @@
 #include <cstdint>
 #include <optional>
 #include <string>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -59,6 +58,12 @@ struct VertexTag {
 
 using Triangle = std::array<int, 3>;  // counter-clockwise
 
+// A tagged edge as its vertex sees it: the other end, and the tag.
+struct TaggedEdge {
+  int other;
+  EdgeFeature feature;
+};
+
 inline std::uint64_t edge_key(int a, int b) {
   const auto lo = static_cast<std::uint32_t>(a < b ? a : b), hi = static_cast<std::uint32_t>(a < b ? b : a);
   return (std::uint64_t{lo} << 32) | hi;
@@ -94,7 +99,10 @@ class TriMesh {
   bool alive(int t) const { return triangles_[t][0] >= 0; }
   const std::vector<int>& triangles_of(int v) const { return vertex_triangles_[v]; }
   const EdgeFeature* feature(int a, int b) const;
-  const std::unordered_map<std::uint64_t, EdgeFeature>& features() const { return features_; }
+  int feature_count() const { return feature_count_; }
+  // The tagged edges at v, by increasing other end (the order of `neighbours`). Changing a tag
+  // invalidates the list.
+  const std::vector<TaggedEdge>& tagged_edges(int v) const { return tagged_[v]; }
   // The tagged edges sorted by (lower, higher) vertex: a deterministic order for output.
   std::vector<std::pair<std::array<int, 2>, EdgeFeature>> sorted_features() const;
   // Alive triangles containing edge (a, b): one on the box, two inside.
@@ -133,7 +141,14 @@ class TriMesh {
   std::vector<ExactPoint> exact_points_;
   std::vector<Triangle> triangles_;
   std::vector<std::vector<int>> vertex_triangles_;
-  std::unordered_map<std::uint64_t, EdgeFeature> features_;
+  // The tagged edges, listed at both ends, each list by increasing other end: a vertex has few
+  // (two on a curve, more only where curves meet) and most have none, so a look-up is a short
+  // scan of one small array (the operations ask for edge tags all the time; a hash map's nodes
+  // were a cache miss each), and a vertex's tagged edges need no walk round its star.
+  std::vector<std::vector<TaggedEdge>> tagged_;
+  int feature_count_ = 0;
+  void put_feature(int a, int b, const EdgeFeature& f);  // inserts or overwrites, unrecorded
+  void erase_feature(int a, int b);                      // unrecorded; none is fine
   int alive_triangles_ = 0;
 
   struct Change {
@@ -144,7 +159,7 @@ class TriMesh {
     Vec2 point = Vec2::Zero();
     int exact_index = -1;
     VertexTag tag{};
-    std::uint64_t key = 0;
+    int lo = -1, hi = -1;  // feature: the edge
     std::optional<EdgeFeature> feature = std::nullopt;
   };
   void record(Change change) {
