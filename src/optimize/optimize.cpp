@@ -24,8 +24,26 @@ struct Edge {
 };
 
 // Every edge once, in triangle order (deterministic): an interior edge from the triangle in which
-// it runs from its lower to its higher vertex, a hull edge from its only triangle.
+// it runs from its lower to its higher vertex, a hull edge from its only triangle. Whether an
+// edge running downwards has a reverse is asked only at vertices on the hull (one of whose star's
+// outgoing edges has no reverse), found first in one pass over the stars.
 std::vector<Edge> all_edges(const TriMesh& m) {
+  std::vector<char> on_hull(m.vertex_count(), 0);
+  for (int v = 0; v < m.vertex_count(); ++v) {
+    const auto& star = m.triangles_of(v);
+    for (int t : star) {
+      const auto& tri = m.triangle(t);
+      const int next = tri[0] == v ? tri[1] : tri[1] == v ? tri[2] : tri[0];
+      const bool reversed = std::any_of(star.begin(), star.end(), [&](int u) {
+        const auto& other = m.triangle(u);
+        return (other[0] == v ? other[2] : other[1] == v ? other[0] : other[1]) == next;
+      });
+      if (!reversed) {
+        on_hull[v] = 1;
+        break;
+      }
+    }
+  }
   std::vector<Edge> edges;
   edges.reserve(3 * static_cast<std::size_t>(m.triangle_count()) / 2 + 8);
   const auto has_directed = [&](int a, int b) {
@@ -40,7 +58,8 @@ std::vector<Edge> all_edges(const TriMesh& m) {
     const auto& tri = m.triangle(t);
     for (int i = 0; i < 3; ++i) {
       const int a = tri[i], b = tri[(i + 1) % 3];
-      if (a < b || !has_directed(b, a)) edges.push_back({std::min(a, b), std::max(a, b), (m.point(a) - m.point(b)).norm()});
+      if (a < b || (on_hull[a] && !has_directed(b, a)))
+        edges.push_back({std::min(a, b), std::max(a, b), (m.point(a) - m.point(b)).norm()});
     }
   }
   return edges;
