@@ -61,12 +61,18 @@ double max_amips_of(const TriMesh& m, const std::vector<int>& triangles) {
   return e;
 }
 
-// The summed AMIPS energy of v's triangles with v at p (infinite if one is not positive in doubles).
-double star_energy(const TriMesh& m, int v, const Vec2& p) {
-  double e = 0;
+// The summed and the largest AMIPS energy of v's triangles with v at p (the sum infinite if one
+// is not positive in doubles), in one pass.
+struct StarEnergy {
+  double sum = 0, max = 0;
+};
+StarEnergy star_energy(const TriMesh& m, int v, const Vec2& p) {
+  StarEnergy e;
   for (int t : m.triangles_of(v)) {
     const auto& tri = m.triangle(t);
-    e += geometry::amips(p, m.point(next_corner(tri, v)), m.point(prev_corner(tri, v)));
+    const double a = geometry::amips(p, m.point(next_corner(tri, v)), m.point(prev_corner(tri, v)));
+    e.sum += a;
+    e.max = std::max(e.max, a);
   }
   return e;
 }
@@ -253,6 +259,22 @@ bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double en
     }
   }
   if (removed.empty()) return false;
+  // Energy and orientation (exact) of the triangles that stay, with `from` replaced by `to`: the
+  // tests that refuse most collapses, so they come first, the energy before the exact test.
+  double before = max_amips_of(m, star), after = 0;
+  std::vector<Triangle> replaced;
+  replaced.reserve(kept.size());
+  for (int t : kept) {
+    Triangle tri = m.triangle(t);
+    for (int& v : tri)
+      if (v == from) v = to;
+    after = std::max(after, geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])));
+    replaced.push_back(tri);
+  }
+  if (after > std::max(before, energy_bound)) return false;
+  for (const Triangle& tri : replaced)
+    if (m.orientation(tri[0], tri[1], tri[2]) <= 0) return false;
+
   // Link condition: the common neighbours of the edge's ends are exactly the opposite corners.
   {
     const auto nf = m.neighbours(from), nt = m.neighbours(to);
@@ -294,20 +316,6 @@ bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double en
     moved.push_back({x, h});
   }
 
-  // Orientation (exact) and energy of the triangles that stay, with `from` replaced by `to`.
-  double before = max_amips_of(m, star), after = 0;
-  std::vector<Triangle> replaced;
-  replaced.reserve(kept.size());
-  for (int t : kept) {
-    Triangle tri = m.triangle(t);
-    for (int& v : tri)
-      if (v == from) v = to;
-    if (m.orientation(tri[0], tri[1], tri[2]) <= 0) return false;
-    after = std::max(after, geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])));
-    replaced.push_back(tri);
-  }
-  if (after > std::max(before, energy_bound)) return false;
-
   for (int t : removed) m.remove_triangle(t);
   for (std::size_t i = 0; i < kept.size(); ++i) m.set_triangle(kept[i], replaced[i]);
   if (edge) m.clear_feature(from, to);
@@ -331,17 +339,22 @@ bool swap_edge(TriMesh& m, int a, int b, double energy_bound) {
   const auto [t1, cc] = triangle_left_of(m, a, b);
   const auto [t2, d] = triangle_left_of(m, b, a);
   if (t1 < 0 || t2 < 0 || cc == d) return false;
+  // Quad a, d, b, c counter-clockwise; the new diagonal is c–d. The energies first: most swaps
+  // are refused there, before the exact tests.
+  const Triangle n1{a, d, cc}, n2{d, b, cc};
+  double before = 0;
+  for (int t : {t1, t2}) {
+    const auto& tri = m.triangle(t);
+    before = std::max(before, geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])));
+  }
+  const double after = std::max(geometry::amips(m.point(a), m.point(d), m.point(cc)),
+                                geometry::amips(m.point(d), m.point(b), m.point(cc)));
+  if (!(after < before) && !(after <= energy_bound)) return false;
   for (int t : m.triangles_of(cc)) {
     const auto& tri = m.triangle(t);
     if (tri[0] == d || tri[1] == d || tri[2] == d) return false;  // edge (c, d) exists already
   }
-  // Quad a, d, b, c counter-clockwise; the new diagonal is c–d.
-  const Triangle n1{a, d, cc}, n2{d, b, cc};
   if (m.orientation(n1[0], n1[1], n1[2]) <= 0 || m.orientation(n2[0], n2[1], n2[2]) <= 0) return false;
-  const double before = max_amips_of(m, {t1, t2});
-  const double after = std::max(geometry::amips(m.point(a), m.point(d), m.point(cc)),
-                                geometry::amips(m.point(d), m.point(b), m.point(cc)));
-  if (!(after < before) && !(after <= energy_bound)) return false;
   m.set_triangle(t1, n1);
   m.set_triangle(t2, n2);
   return true;
@@ -353,10 +366,14 @@ bool smooth_vertex(TriMesh& m, const Constraints& c, int v) {
   const Vec2 x0 = m.point(v);
   // A star with a triangle too flat for doubles has infinite energy: then there is no Newton step,
   // but any valid position of finite energy is better, and the fallback below looks for one.
-  const double e0 = star_energy(m, v, x0), max0 = star_max_energy(m, v, x0);
+  const StarEnergy start = star_energy(m, v, x0);
+  const double e0 = start.sum, max0 = start.max;
   const bool finite = std::isfinite(e0);
   // A move is better when the summed energy decreases and the worst triangle gets no worse.
-  const auto better = [&](const Vec2& p) { return star_energy(m, v, p) < e0 && star_max_energy(m, v, p) <= max0; };
+  const auto better = [&](const Vec2& p) {
+    const StarEnergy e = star_energy(m, v, p);
+    return e.sum < e0 && e.max <= max0;
+  };
   const auto d = finite ? star_derivatives(m, v, x0) : geometry::AmipsDerivatives{};
 
   if (tag.kind == VertexKind::primary) {
