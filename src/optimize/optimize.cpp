@@ -93,13 +93,17 @@ void grade(const TriMesh& m, std::vector<double>& size, double gradation) {
     const auto [s, v] = queue.top();
     queue.pop();
     if (s > size[v]) continue;
-    for (int w : m.neighbours(v)) {
-      const double bound = s + gradation * (m.point(v) - m.point(w)).norm();
-      if (bound < size[w]) {
-        size[w] = bound;
-        queue.emplace(bound, w);
+    // The star's corners, an inner neighbour twice: the second look changes nothing, and the
+    // result does not depend on the order (the queue orders by size, then vertex).
+    for (int t : m.triangles_of(v))
+      for (int w : m.triangle(t)) {
+        if (w == v) continue;
+        const double bound = s + gradation * (m.point(v) - m.point(w)).norm();
+        if (bound < size[w]) {
+          size[w] = bound;
+          queue.emplace(bound, w);
+        }
       }
-    }
   }
 }
 
