@@ -170,7 +170,7 @@ check("epsilon below mu: exit 2 naming both", r.returncode == 2 and "--epsilon" 
       and not os.path.exists(os.path.join(tmp.name, "never.msh")), r.stderr)
 # Progress: a run longer than about 2 s says where it is on stderr, plain lines when stderr is
 # not a terminal, one line redrawn in place (and cleared) when it is; -q silences it.
-fine = ["mesh", example, "-o", out, "--linear", "-l", "0.003"]  # about 5 s: well past the 2 s
+fine = ["mesh", example, "-o", out, "--linear", "-l", "0.002"]  # about 5 s: well past the 2 s
 r = subprocess.run([binary, *fine], capture_output=True, text=True, timeout=300)
 lines = r.stderr.splitlines()
 passes = [l for l in lines if l.startswith(f"curvemesh: {example}: optimize pass ")]
