@@ -201,9 +201,10 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
         }
       }
     }
-    // Swap where it lowers the larger energy of the two triangles.
+    // Swap where it lowers the larger energy of the two triangles (an edge an earlier swap
+    // removed has no triangle on either side: swap_edge refuses it).
     for (const Edge& e : all_edges(m))
-      if (is_edge(m, e.a, e.b) && mesh::swap_edge(m, e.a, e.b)) ++s.swaps;
+      if (mesh::swap_edge(m, e.a, e.b)) ++s.swaps;
     // Smooth, project feature vertices onto their curves (Fig. 8), round exact vertices.
     for (int v = 0; v < m.vertex_count(); ++v) {
       if (m.triangles_of(v).empty()) continue;
@@ -336,7 +337,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
       for (int i = 0; i < 3; ++i) s.released += mesh::release_secondary_edge(m, c, tri[i], tri[(i + 1) % 3]);
     }
     for (const Edge& e : all_edges(m))
-      if (is_edge(m, e.a, e.b) && mesh::swap_edge(m, e.a, e.b)) ++s.swaps;
+      if (mesh::swap_edge(m, e.a, e.b)) ++s.swaps;
     m.compact();  // the collapsed vertices (and their exact positions) go
   }
   s.exact_left = m.exact_vertex_count();
