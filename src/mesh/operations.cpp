@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "geometry/amips.hpp"
 #include "geometry/bezier_analysis.hpp"
@@ -52,7 +53,7 @@ std::pair<int, int> triangle_left_of(const TriMesh& m, int a, int b) {
   return {-1, -1};
 }
 
-double max_amips_of(const TriMesh& m, const std::vector<int>& triangles) {
+double max_amips_of(const TriMesh& m, std::span<const int> triangles) {
   double e = 0;
   for (int t : triangles) {
     const auto& tri = m.triangle(t);
@@ -73,16 +74,6 @@ StarEnergy star_energy(const TriMesh& m, int v, const Vec2& p) {
     const double a = geometry::amips(p, m.point(next_corner(tri, v)), m.point(prev_corner(tri, v)));
     e.sum += a;
     e.max = std::max(e.max, a);
-  }
-  return e;
-}
-
-// The largest AMIPS energy of v's triangles with v at p.
-double star_max_energy(const TriMesh& m, int v, const Vec2& p) {
-  double e = 0;
-  for (int t : m.triangles_of(v)) {
-    const auto& tri = m.triangle(t);
-    e = std::max(e, geometry::amips(p, m.point(next_corner(tri, v)), m.point(prev_corner(tri, v))));
   }
   return e;
 }
@@ -342,11 +333,7 @@ bool swap_edge(TriMesh& m, int a, int b, double energy_bound) {
   // Quad a, d, b, c counter-clockwise; the new diagonal is c–d. The energies first: most swaps
   // are refused there, before the exact tests.
   const Triangle n1{a, d, cc}, n2{d, b, cc};
-  double before = 0;
-  for (int t : {t1, t2}) {
-    const auto& tri = m.triangle(t);
-    before = std::max(before, geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])));
-  }
+  const double before = max_amips_of(m, std::array{t1, t2});
   const double after = std::max(geometry::amips(m.point(a), m.point(d), m.point(cc)),
                                 geometry::amips(m.point(d), m.point(b), m.point(cc)));
   if (!(after < before) && !(after <= energy_bound)) return false;
@@ -462,13 +449,13 @@ bool project_vertex(TriMesh& m, const Constraints& c, int v, double energy_bound
   const double t = std::clamp(curve.t0 + cp.t * (curve.t1 - curve.t0), lo + margin, hi - margin);
   // No worse than the star is now, or than the bound: projecting must not undo the optimization.
   const Vec2 x0 = m.point(v), target = curve.eval(t);
-  const double allowed = std::max(star_max_energy(m, v, x0), energy_bound);
-  if (star_max_energy(m, v, target) <= allowed && try_curve_move(m, c, v, n, t)) return true;
+  const double allowed = std::max(star_energy(m, v, x0).max, energy_bound);
+  if (star_energy(m, v, target).max <= allowed && try_curve_move(m, c, v, n, t)) return true;
   // Fig. 8: get as close as the neighbourhood allows now; smoothing of the others makes room.
   for (double lambda : {0.5, 0.25, 0.125}) {
     const Vec2 p = x0 + lambda * (target - x0);
     if (p == x0) break;
-    if (star_max_energy(m, v, p) <= allowed && star_valid_at(m, v, p) && secondary_edges_inside(m, c, v, p)) {
+    if (star_energy(m, v, p).max <= allowed && star_valid_at(m, v, p) && secondary_edges_inside(m, c, v, p)) {
       m.set_position(v, p);
       return true;
     }

@@ -82,30 +82,20 @@ const EdgeFeature* TriMesh::feature(int a, int b) const {
 }
 
 void TriMesh::put_feature(int a, int b, const EdgeFeature& f) {
-  bool added = false;
   for (const auto& [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
     auto& list = tagged_[x];
     const auto it = std::lower_bound(list.begin(), list.end(), y, [](const TaggedEdge& e, int v) { return e.other < v; });
-    if (it != list.end() && it->other == y) {
-      it->feature = f;
-    } else {
-      list.insert(it, {y, f});
-      added = true;
-    }
+    if (it != list.end() && it->other == y) it->feature = f;
+    else list.insert(it, {y, f});
   }
-  feature_count_ += added;
 }
 
 void TriMesh::erase_feature(int a, int b) {
-  bool erased = false;
   for (const auto& [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
     auto& list = tagged_[x];
     const auto it = std::find_if(list.begin(), list.end(), [&](const TaggedEdge& e) { return e.other == y; });
-    if (it == list.end()) continue;
-    list.erase(it);
-    erased = true;
+    if (it != list.end()) list.erase(it);
   }
-  feature_count_ -= erased;
 }
 
 void TriMesh::set_feature(int a, int b, const EdgeFeature& f) {
@@ -181,7 +171,6 @@ void TriMesh::rollback() {
 
 std::vector<std::pair<std::array<int, 2>, EdgeFeature>> TriMesh::sorted_features() const {
   std::vector<std::pair<std::array<int, 2>, EdgeFeature>> out;
-  out.reserve(feature_count_);
   for (int lo = 0; lo < vertex_count(); ++lo)
     for (const TaggedEdge& e : tagged_[lo])
       if (lo < e.other) out.push_back({{lo, e.other}, e.feature});
@@ -257,13 +246,10 @@ std::vector<int> TriMesh::compact() {
   // The renumbering keeps the order of vertices: the lists stay sorted, and t_lo stays with the
   // lower end.
   std::vector<std::vector<TaggedEdge>> tagged(next);
-  int feature_count = 0;
   for (int v = 0; v < n; ++v)
     for (const TaggedEdge& e : tagged_[v]) {
       const int a = remap[v], b = remap[e.other];
-      if (a < 0 || b < 0) continue;
-      tagged[a].push_back({b, e.feature});
-      feature_count += a < b;
+      if (a >= 0 && b >= 0) tagged[a].push_back({b, e.feature});
     }
 
   points_ = std::move(points);
@@ -272,7 +258,6 @@ std::vector<int> TriMesh::compact() {
   exact_points_ = std::move(exact_points);
   triangles_ = std::move(triangles);
   tagged_ = std::move(tagged);
-  feature_count_ = feature_count;
   vertex_triangles_.assign(next, {});
   for (int t = 0; t < triangle_slots(); ++t)
     for (int v : triangles_[t]) vertex_triangles_[v].push_back(t);

@@ -99,7 +99,6 @@ class TriMesh {
   bool alive(int t) const { return triangles_[t][0] >= 0; }
   const std::vector<int>& triangles_of(int v) const { return vertex_triangles_[v]; }
   const EdgeFeature* feature(int a, int b) const;
-  int feature_count() const { return feature_count_; }
   // The tagged edges at v, by increasing other end (the order of `neighbours`). Changing a tag
   // invalidates the list.
   const std::vector<TaggedEdge>& tagged_edges(int v) const { return tagged_[v]; }
@@ -146,7 +145,6 @@ class TriMesh {
   // scan of one small array (the operations ask for edge tags all the time; a hash map's nodes
   // were a cache miss each), and a vertex's tagged edges need no walk round its star.
   std::vector<std::vector<TaggedEdge>> tagged_;
-  int feature_count_ = 0;
   void put_feature(int a, int b, const EdgeFeature& f);  // inserts or overwrites, unrecorded
   void erase_feature(int a, int b);                      // unrecorded; none is fine
   int alive_triangles_ = 0;
