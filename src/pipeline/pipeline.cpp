@@ -299,7 +299,8 @@ Result run(const Source& source, const Parameters& parameters, const RunOptions&
   stats["seconds"]["triangulate"] = seconds_since(t);
   stats["triangulate"] = {{"vertices", tri.stats.vertices},
                           {"triangles", tri.stats.triangles},
-                          {"exact_vertices", tri.stats.exact_vertices}};
+                          {"exact_vertices", tri.stats.exact_vertices},
+                          {"method", triangulate::method_name(tri.stats.method)}};
   r.box = tri.box;
   r.triangulate_stats = tri.stats;
   r.linear = std::move(tri.mesh);

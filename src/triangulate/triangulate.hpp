@@ -2,16 +2,23 @@
 // §4.1, first half: an exact constrained triangulation of the outer box and every feature.
 //
 // The box, the primary polylines (one constraint per polyline edge), the secondary segments and
-// the isolated points go into CGAL's constrained Delaunay triangulation with the exact-constructions
-// kernel, which computes every crossing exactly. Each resulting edge is tagged with what it lies on
-// (primary beats secondary beats box when inputs overlap), each vertex with how it may move later.
-// Vertices whose exact position rounds to doubles without inverting a triangle are rounded; the
-// others keep their rational position until the optimizer can round them (TetWild's hybrid kernel).
+// the isolated points form an arrangement whose crossings are computed exactly. It is triangulated
+// on the crossings' rounded positions and certified at their exact ones; where that cannot be
+// certified, at their exact positions (arrangement.hpp). Each resulting edge is tagged with what it lies on (primary beats secondary
+// beats box when inputs overlap), each vertex with how it may move later. Vertices whose exact
+// position rounds to doubles without inverting a triangle are rounded; the others keep their
+// rational position until the optimizer can round them (TetWild's hybrid kernel).
 // Never fails on finite input.
 #include "features/features.hpp"
 #include "mesh/tri_mesh.hpp"
 
 namespace curvemesh::triangulate {
+
+// How the arrangement was triangulated: at the crossings' rounded positions, certified (the usual
+// case); at their exact positions, where rounding could not be certified; or by CGAL's exact
+// constructions.
+enum class Method { rounded, exact_crossings, exact_constructions };
+const char* method_name(Method m);  // "rounded", "exact crossings", "exact constructions"
 
 struct Options {
   // The outer box is the input's bounding box grown on every side by this length (a fraction of
@@ -25,6 +32,7 @@ struct Stats {
   int triangles = 0;
   int crossing_vertices = 0;  // vertices created by intersecting input constraints
   int exact_vertices = 0;     // of those, the ones that could not be rounded to doubles yet
+  Method method = Method::rounded;
   double seconds = 0;
 };
 

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "pipeline/parameters.hpp"
+#include "triangulate/arrangement.hpp"
 #include "triangulate/triangulate.hpp"
 
 namespace curvemesh::triangulate {
@@ -88,6 +89,7 @@ TEST(Triangulate, CrossingSegmentsMeetAtOneExactVertex) {
   expect_valid(r, f);
   EXPECT_EQ(r.mesh.vertex_count(), 4 + 4 + 1);
   EXPECT_EQ(r.stats.crossing_vertices, 1);
+  EXPECT_EQ(r.stats.method, Method::rounded);
   int at_centre = 0;
   for (int v = 0; v < r.mesh.vertex_count(); ++v)
     if (r.mesh.point(v) == Vec2(0.5, 0.5)) {
@@ -204,6 +206,8 @@ TEST(Triangulate, UnroundableCrossingsKeepExactPositions) {
   expect_valid(r, f);
   EXPECT_GT(r.stats.crossing_vertices, 0);
   EXPECT_GT(r.stats.exact_vertices, 0);  // the case this test is about does arise
+  // Crossings that round onto each other: the triangulation is built at the exact positions.
+  EXPECT_EQ(r.stats.method, Method::exact_crossings);
   for (int v = 0; v < r.mesh.vertex_count(); ++v) {
     if (!r.mesh.has_exact(v)) continue;
     // Kept exact only because its nearest double inverts or flattens an incident triangle.
@@ -217,6 +221,44 @@ TEST(Triangulate, UnroundableCrossingsKeepExactPositions) {
     }
     EXPECT_TRUE(inverts) << "vertex " << v << " could have been rounded";
   }
+}
+
+// The same fan through the arrangement alone: the crossings that cannot be rounded are held at
+// their exact positions, the others rounded, and the result is the arrangement CGAL's exact
+// constructions find (as many vertices, pieces and triangles), counter-clockwise at the positions
+// it gives (exactly, with GMP).
+TEST(Triangulate, CrossingsThatCannotBeRoundedAreHeldExact) {
+  detail::Input in;
+  for (const Vec2& c : {Vec2(-1, -1), Vec2(2, -1), Vec2(2, 2), Vec2(-1, 2)}) in.points.push_back({c, true, false});
+  std::vector<std::array<Vec2, 2>> segs;
+  for (int k = 0; k < 12; ++k)
+    segs.push_back({Vec2(0, 0.1 + k * 1e-17), Vec2(1, 0.1 + (12 - k) * 3e-17 + 1e-16 * (k % 3))});
+  segs.push_back({Vec2(0.5, 0), Vec2(0.5 + 1e-16, 1)});
+  // Away from the fan, two segments cross at a point no double holds, which rounds safely.
+  segs.push_back({Vec2(1.2, 0.1), Vec2(1.7, 0.9)});
+  segs.push_back({Vec2(1.2, 0.8), Vec2(1.9, 0.15)});
+  for (std::size_t k = 0; k < segs.size(); ++k) {
+    in.points.push_back({segs[k][0], false, false});
+    in.points.push_back({segs[k][1], false, false});
+    in.constraints.push_back({mesh::EdgeKind::secondary, int(k), -1, 4 + 2 * int(k), 5 + 2 * int(k)});
+  }
+  for (int side = 0; side < 4; ++side) in.constraints.push_back({mesh::EdgeKind::boundary, side, -1, side, (side + 1) % 4});
+  const std::optional<detail::Triangulation> t = detail::triangulate_arrangement(in);
+  ASSERT_TRUE(t.has_value());
+  EXPECT_EQ(t->method, Method::exact_crossings);
+  const detail::Triangulation exact = detail::triangulate_exact(in);
+  EXPECT_EQ(t->vertices.size(), exact.vertices.size());
+  EXPECT_EQ(t->pieces.size(), exact.pieces.size());
+  EXPECT_EQ(t->triangles.size(), exact.triangles.size());
+  int held = 0, rounded = 0;
+  for (const auto& v : t->vertices) {
+    if (v.input) continue;
+    (v.exact_needed ? held : rounded) += 1;
+  }
+  EXPECT_GT(held, 0);
+  EXPECT_EQ(rounded, 1);  // not every crossing: only those that cannot be rounded
+  const auto at = [&](int v) { return t->vertices[v].exact_needed ? t->vertices[v].exact : ExactPoint(t->vertices[v].approx); };
+  for (const auto& tri : t->triangles) EXPECT_GT(sgn(cross(at(tri[0]), at(tri[1]), at(tri[2]))), 0);
 }
 
 TEST(Triangulate, PrimarySectionsTagVerticesWithTheirParameter) {
@@ -316,6 +358,96 @@ TEST(Triangulate, EmptyAndSinglePointInputsGiveABox) {
   const Result p = triangulate(one);
   expect_valid(p, one);
   EXPECT_EQ(p.mesh.triangle_count(), 4);
+}
+
+// The two ways to the arrangement (arrangement.hpp), compared on one input: CGAL's exact
+// constructions are the reference. The rounded path must succeed and find the same vertices (at
+// most a few units in the last place apart), the same pieces with the same constraints on each,
+// the same ends of every constraint, and as many triangles.
+void expect_same_arrangement(const detail::Input& in) {
+  const std::optional<detail::Triangulation> rounded = detail::triangulate_arrangement(in);
+  ASSERT_TRUE(rounded.has_value());
+  EXPECT_EQ(rounded->method, Method::rounded);
+  const detail::Triangulation exact = detail::triangulate_exact(in);
+  ASSERT_EQ(rounded->vertices.size(), exact.vertices.size());
+  ASSERT_EQ(rounded->triangles.size(), exact.triangles.size());
+  // Vertices matched by position: distinct vertices of these inputs are far apart.
+  std::vector<int> to_exact(rounded->vertices.size(), -1);
+  std::vector<char> used(exact.vertices.size(), 0);
+  for (std::size_t v = 0; v < rounded->vertices.size(); ++v) {
+    const detail::ArrangementVertex& a = rounded->vertices[v];
+    EXPECT_FALSE(a.exact_needed);
+    for (std::size_t w = 0; w < exact.vertices.size(); ++w) {
+      const detail::ArrangementVertex& b = exact.vertices[w];
+      if ((a.approx - b.approx).norm() > 1e-12 || used[w]) continue;
+      to_exact[v] = int(w);
+      used[w] = 1;
+      EXPECT_EQ(a.input, b.input);
+      EXPECT_EQ(a.fixed, b.fixed);
+      EXPECT_EQ(a.isolated, b.isolated);
+      break;
+    }
+    ASSERT_GE(to_exact[v], 0) << "no exact vertex at " << a.approx.transpose();
+  }
+  const auto pieces = [](const detail::Triangulation& t, const std::vector<int>* map) {
+    std::map<std::pair<int, int>, std::vector<int>> out;
+    for (const detail::Piece& p : t.pieces) {
+      const int u = map ? (*map)[p.u] : p.u, w = map ? (*map)[p.w] : p.w;
+      std::vector<int> cs(t.piece_constraints.begin() + p.first, t.piece_constraints.begin() + p.last);
+      std::sort(cs.begin(), cs.end());
+      EXPECT_TRUE(out.emplace(std::pair{std::min(u, w), std::max(u, w)}, cs).second) << "a piece twice";
+    }
+    return out;
+  };
+  EXPECT_EQ(pieces(*rounded, &to_exact), pieces(exact, nullptr));
+  ASSERT_EQ(rounded->constraint_ends.size(), exact.constraint_ends.size());
+  for (std::size_t c = 0; c < exact.constraint_ends.size(); ++c) {
+    const auto& e = rounded->constraint_ends[c];
+    if (e[0] < 0) {
+      EXPECT_EQ(exact.constraint_ends[c][0], -1) << c;
+    } else {
+      EXPECT_EQ((std::array{to_exact[e[0]], to_exact[e[1]]}), exact.constraint_ends[c]) << c;
+    }
+  }
+}
+
+// An input of secondary segments and isolated points inside the box [-1, n + 1]^2.
+detail::Input arrangement_input(const std::vector<std::array<Vec2, 2>>& segments, const std::vector<Vec2>& points, double n) {
+  detail::Input in;
+  for (const Vec2& c : {Vec2(-1, -1), Vec2(n + 1, -1), Vec2(n + 1, n + 1), Vec2(-1, n + 1)}) in.points.push_back({c, true, false});
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    const int a = int(in.points.size());
+    in.points.push_back({segments[k][0], false, false});
+    in.points.push_back({segments[k][1], false, false});
+    in.constraints.push_back({mesh::EdgeKind::secondary, int(k), -1, a, a + 1});
+  }
+  for (const Vec2& p : points) in.points.push_back({p, true, true});
+  for (int side = 0; side < 4; ++side) in.constraints.push_back({mesh::EdgeKind::boundary, side, -1, side, (side + 1) % 4});
+  return in;
+}
+
+// Segments between the points of a 5 x 5 integer grid: collinear overlaps, segments repeated in
+// either direction, T-junctions, many segments through one crossing, ends on crossings, crossings
+// at rationals that no double holds; and isolated grid points, some on segments.
+TEST(Triangulate, RoundedPathFindsTheExactArrangementOfGridSegments) {
+  for (unsigned seed = 1; seed <= 25; ++seed) {
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<int> g(0, 4);
+    std::vector<std::array<Vec2, 2>> segs;
+    for (int k = 0; k < 30; ++k) segs.push_back({Vec2(g(rng), g(rng)), Vec2(g(rng), g(rng))});
+    std::vector<Vec2> points;
+    for (int k = 0; k < 5; ++k) points.push_back(Vec2(g(rng), g(rng)));
+    SCOPED_TRACE(seed);
+    expect_same_arrangement(arrangement_input(segs, points, 4));
+  }
+}
+
+TEST(Triangulate, RoundedPathFindsTheExactArrangementOfRandomSegments) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<std::array<Vec2, 2>> segs;
+  for (int k = 0; k < 300; ++k) segs.push_back({Vec2(u(rng), u(rng)), Vec2(u(rng), u(rng))});
+  expect_same_arrangement(arrangement_input(segs, {}, 1));
 }
 
 }  // namespace
