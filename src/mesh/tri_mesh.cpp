@@ -93,7 +93,8 @@ void TriMesh::put_feature(int a, int b, const EdgeFeature& f) {
 void TriMesh::erase_feature(int a, int b) {
   for (const auto& [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
     auto& list = tagged_[x];
-    const auto it = std::find_if(list.begin(), list.end(), [&](const TaggedEdge& e) { return e.other == y; });
+    const int other = y;  // clang 14 cannot capture a structured binding
+    const auto it = std::find_if(list.begin(), list.end(), [other](const TaggedEdge& e) { return e.other == other; });
     if (it != list.end()) list.erase(it);
   }
 }
