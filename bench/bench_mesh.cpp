@@ -50,12 +50,12 @@ BENCHMARK(BM_Mesh)->Arg(1000)->Arg(4000)->Arg(16000)->Unit(benchmark::kMilliseco
 void BM_DenseTriangulate(benchmark::State& state) {
   mesh_soup(state, pipeline::Stage::triangulate, true);
 }
-BENCHMARK(BM_DenseTriangulate)->Arg(125)->Arg(250)->Arg(500)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DenseTriangulate)->Arg(125)->Arg(250)->Arg(500)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond);
 
 void BM_DenseMesh(benchmark::State& state) {
   mesh_soup(state, pipeline::Stage::curve, true);
 }
-BENCHMARK(BM_DenseMesh)->Arg(250)->Arg(500)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DenseMesh)->Arg(250)->Arg(500)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

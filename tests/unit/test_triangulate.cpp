@@ -223,13 +223,26 @@ TEST(Triangulate, UnroundableCrossingsKeepExactPositions) {
   }
 }
 
+// An input of secondary segments and isolated points inside the box [-1, n + 1]^2.
+detail::Input arrangement_input(const std::vector<std::array<Vec2, 2>>& segments, const std::vector<Vec2>& points, double n) {
+  detail::Input in;
+  for (const Vec2& c : {Vec2(-1, -1), Vec2(n + 1, -1), Vec2(n + 1, n + 1), Vec2(-1, n + 1)}) in.points.push_back({c, true, false});
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    const int a = int(in.points.size());
+    in.points.push_back({segments[k][0], false, false});
+    in.points.push_back({segments[k][1], false, false});
+    in.constraints.push_back({mesh::EdgeKind::secondary, int(k), -1, a, a + 1});
+  }
+  for (const Vec2& p : points) in.points.push_back({p, true, true});
+  for (int side = 0; side < 4; ++side) in.constraints.push_back({mesh::EdgeKind::boundary, side, -1, side, (side + 1) % 4});
+  return in;
+}
+
 // The same fan through the arrangement alone: the crossings that cannot be rounded are held at
 // their exact positions, the others rounded, and the result is the arrangement CGAL's exact
 // constructions find (as many vertices, pieces and triangles), counter-clockwise at the positions
 // it gives (exactly, with GMP).
 TEST(Triangulate, CrossingsThatCannotBeRoundedAreHeldExact) {
-  detail::Input in;
-  for (const Vec2& c : {Vec2(-1, -1), Vec2(2, -1), Vec2(2, 2), Vec2(-1, 2)}) in.points.push_back({c, true, false});
   std::vector<std::array<Vec2, 2>> segs;
   for (int k = 0; k < 12; ++k)
     segs.push_back({Vec2(0, 0.1 + k * 1e-17), Vec2(1, 0.1 + (12 - k) * 3e-17 + 1e-16 * (k % 3))});
@@ -237,12 +250,7 @@ TEST(Triangulate, CrossingsThatCannotBeRoundedAreHeldExact) {
   // Away from the fan, two segments cross at a point no double holds, which rounds safely.
   segs.push_back({Vec2(1.2, 0.1), Vec2(1.7, 0.9)});
   segs.push_back({Vec2(1.2, 0.8), Vec2(1.9, 0.15)});
-  for (std::size_t k = 0; k < segs.size(); ++k) {
-    in.points.push_back({segs[k][0], false, false});
-    in.points.push_back({segs[k][1], false, false});
-    in.constraints.push_back({mesh::EdgeKind::secondary, int(k), -1, 4 + 2 * int(k), 5 + 2 * int(k)});
-  }
-  for (int side = 0; side < 4; ++side) in.constraints.push_back({mesh::EdgeKind::boundary, side, -1, side, (side + 1) % 4});
+  const detail::Input in = arrangement_input(segs, {}, 1);
   const std::optional<detail::Triangulation> t = detail::triangulate_arrangement(in);
   ASSERT_TRUE(t.has_value());
   EXPECT_EQ(t->method, Method::exact_crossings);
@@ -409,21 +417,6 @@ void expect_same_arrangement(const detail::Input& in) {
       EXPECT_EQ((std::array{to_exact[e[0]], to_exact[e[1]]}), exact.constraint_ends[c]) << c;
     }
   }
-}
-
-// An input of secondary segments and isolated points inside the box [-1, n + 1]^2.
-detail::Input arrangement_input(const std::vector<std::array<Vec2, 2>>& segments, const std::vector<Vec2>& points, double n) {
-  detail::Input in;
-  for (const Vec2& c : {Vec2(-1, -1), Vec2(n + 1, -1), Vec2(n + 1, n + 1), Vec2(-1, n + 1)}) in.points.push_back({c, true, false});
-  for (std::size_t k = 0; k < segments.size(); ++k) {
-    const int a = int(in.points.size());
-    in.points.push_back({segments[k][0], false, false});
-    in.points.push_back({segments[k][1], false, false});
-    in.constraints.push_back({mesh::EdgeKind::secondary, int(k), -1, a, a + 1});
-  }
-  for (const Vec2& p : points) in.points.push_back({p, true, true});
-  for (int side = 0; side < 4; ++side) in.constraints.push_back({mesh::EdgeKind::boundary, side, -1, side, (side + 1) % 4});
-  return in;
 }
 
 // Segments between the points of a 5 x 5 integer grid: collinear overlaps, segments repeated in
