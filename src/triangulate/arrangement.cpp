@@ -428,10 +428,7 @@ class Builder {
       if (!is_crossing(v) || held_[v]) continue;
       held_[v] = 1;
       const int crossing = node_of_vertex_[v] - static_cast<int>(points_.size());
-      ArrangementVertex& a = out_.vertices[v];
-      a.exact = exact_crossing(crossing);
-      a.approx = geometry::nearest_double(a.exact);
-      a.exact_needed = ExactPoint(a.approx).x != a.exact.x || ExactPoint(a.approx).y != a.exact.y;
+      out_.vertices[v].set_exact(exact_crossing(crossing));
     }
   }
 

@@ -17,6 +17,7 @@
 //    constructions, which always succeeds but is several times slower on dense inputs.
 #include <array>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "geometry/predicates.hpp"
@@ -50,6 +51,14 @@ struct ArrangementVertex {
   geometry::ExactPoint exact;
   bool fixed = false, isolated = false;
   bool input = false;  // an input point (the others are crossings)
+
+  // At a rational position: the mesh takes its nearest double, and keeps the rational when the
+  // double is not it.
+  void set_exact(geometry::ExactPoint e) {
+    exact = std::move(e);
+    approx = geometry::nearest_double(exact);
+    exact_needed = geometry::ExactPoint(approx).x != exact.x || geometry::ExactPoint(approx).y != exact.y;
+  }
 };
 
 // One piece of the arrangement: the constraints `constraints[first, last)` of `piece_constraints`

@@ -52,9 +52,7 @@ void set_position(ArrangementVertex& v, const Point& p) {
     v.approx = {ix.first, iy.first};
     return;
   }
-  v.exact = geometry::ExactPoint(to_mpq(p.x()), to_mpq(p.y()));
-  v.approx = geometry::nearest_double(v.exact);
-  v.exact_needed = geometry::ExactPoint(v.approx).x != v.exact.x || geometry::ExactPoint(v.approx).y != v.exact.y;
+  v.set_exact(geometry::ExactPoint(to_mpq(p.x()), to_mpq(p.y())));
 }
 
 }  // namespace
