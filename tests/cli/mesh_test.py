@@ -3,7 +3,8 @@
 checker tests/tools/msh_check.py (exact orientation from the written text, Gmsh and meshio read it):
 the bundled examples in both file versions, the target edge length on a unit square, determinism,
 Triangle .poly input, nasty inputs (many segments through a point, overlapping collinear segments,
-segments shorter than 1e-12 d, points on segments), copies scaled by 1e-6 and 1e6, bad input.
+segments shorter than 1e-12 d, points on segments), copies scaled by 1e-6 and 1e6, bad input, a
+dense soup from scripts/random-soup.
 
 usage: mesh_test.py CURVEMESH_BINARY EXAMPLES_DIR
 """
@@ -198,6 +199,26 @@ text = seen.decode(errors="replace")
 check("progress on a terminal: one line redrawn in place, cleared at the end",
       proc.returncode == 0 and "\r\x1b[K" in text and "optimize pass" in text and "\n" not in text.strip("\r\x1b[K")
       and text.endswith("\r\x1b[K"), repr(text[-300:]))
+# The README's soups for measuring large inputs (scripts/random-soup): the same file for the same
+# arguments, and a small dense one (every pair of curves crossing) meshes and certifies, its
+# crossings triangulated on their rounded positions.
+soup_script = os.path.join(examples, "..", "scripts", "random-soup")
+soups = [subprocess.run([sys.executable, soup_script, "40", "--dense"], capture_output=True, text=True) for _ in range(2)]
+check("random-soup: deterministic, exit 0", all(x.returncode == 0 for x in soups) and soups[0].stdout == soups[1].stdout
+      and soups[0].stdout.count("<path") == 40, soups[0].stderr[-300:])
+dense = os.path.join(tmp.name, "dense40.svg")
+with open(dense, "w") as f:
+    f.write(soups[0].stdout)
+r, out, stats = mesh("dense40", dense)
+check("dense soup of 40 cubics meshes", r.returncode == 0, r.stderr[-500:])
+if r.returncode == 0:
+    certify("dense soup of 40 cubics", out)
+    with open(stats) as f:
+        method = json.load(f)["triangulate"]["method"]
+    check("dense soup: crossings triangulated rounded and certified", method == "rounded", method)
+bad = subprocess.run([sys.executable, soup_script, "0"], capture_output=True, text=True)
+check("random-soup 0: usage error", bad.returncode == 2 and "at least 1" in bad.stderr, bad.stderr[-300:])
+
 r = subprocess.run([binary, "mesh", "--help"], capture_output=True, text=True)
 check("mesh --help", r.returncode == 0 and "--linear" in r.stdout and "--msh-version" in r.stdout, r.stdout[-300:])
 
