@@ -220,7 +220,24 @@ int split_edge(TriMesh& m, const Constraints& c, int a, int b, double energy_bou
   return mid;
 }
 
-bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double energy_bound) {
+namespace {
+
+// What a collapse of `from` into `to` does to the tagged edges of `from`: those that move to `to`
+// (a curve edge with its parameter at `to`), the secondary ones that merge into an edge `to` has
+// already, and the secondary ones to check against the envelope at their new place.
+struct CollapseTags {
+  struct Moved {
+    int x;
+    EdgeFeature f;
+  };
+  std::vector<Moved> moved;
+  std::vector<int> merged, in_envelope;
+};
+
+// The rules of a collapse on tags and curves alone: which vertices may move along which edge, how
+// far a curve edge would turn, which tagged edges may merge. Fills `out` when given; false as soon
+// as a rule refuses.
+bool collapse_tags(const TriMesh& m, const Constraints& c, int from, int to, CollapseTags* out) {
   const VertexTag& tag = m.tag(from);
   if (tag.kind == VertexKind::fixed || tag.isolated) return false;
   const EdgeFeature* edge = m.feature(from, to);
@@ -237,6 +254,44 @@ bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double en
     default:
       if (edge) return false;
   }
+  for (const TaggedEdge& e : m.tagged_edges(from)) {
+    const int x = e.other;
+    if (x == to) continue;
+    const EdgeFeature& g = e.feature;
+    EdgeFeature h = g;
+    if (g.kind == EdgeKind::primary) {
+      if (!edge || edge->kind != EdgeKind::primary || edge->source != g.source) return false;
+      const double tx = param_at(g, from, x, x), tt = param_at(*edge, from, to, to);
+      if (c.sections[g.source].turning(tx, tt) > turning_limit(c)) return false;
+      h = primary_edge(g, x, tx, to, tt);
+    }
+    if (out && g.kind == EdgeKind::secondary) out->in_envelope.push_back(x);
+    // Two tagged edges merge into one. A secondary edge only asks to stay inside the envelope, so
+    // it may merge into any edge, which keeps the stronger tag; a curve or box side never merges
+    // into another.
+    if (const EdgeFeature* existing = m.feature(to, x)) {
+      if (g.kind != EdgeKind::secondary && existing->kind != EdgeKind::secondary) return false;
+      if (g.kind == EdgeKind::secondary) {
+        if (out) out->merged.push_back(x);  // (to, x) keeps its own tag
+        continue;
+      }
+    }
+    if (out) out->moved.push_back({x, h});
+  }
+  return true;
+}
+
+}  // namespace
+
+bool collapse_allowed_by_tags(const TriMesh& m, const Constraints& c, int from, int to) {
+  return collapse_tags(m, c, from, to, nullptr);
+}
+
+bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double energy_bound) {
+  // The tests on tags and curves refuse most collapses and are the cheapest: they come first, then
+  // the energies, the exact orientations, the link condition and the envelope.
+  CollapseTags tags;
+  if (!collapse_tags(m, c, from, to, &tags)) return false;
 
   const std::vector<int>& star = m.triangles_of(from);  // read before the mesh changes
   std::vector<int> removed, kept, opposite;
@@ -250,8 +305,8 @@ bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double en
     }
   }
   if (removed.empty()) return false;
-  // Energy and orientation (exact) of the triangles that stay, with `from` replaced by `to`: the
-  // tests that refuse most collapses, so they come first, the energy before the exact test.
+  // Energy and orientation (exact) of the triangles that stay, with `from` replaced by `to`, the
+  // energy before the exact test.
   double before = max_amips_of(m, star), after = 0;
   std::vector<Triangle> replaced;
   replaced.reserve(kept.size());
@@ -274,45 +329,16 @@ bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double en
     std::sort(opposite.begin(), opposite.end());
     if (common != opposite) return false;
   }
+  for (int x : tags.in_envelope)
+    if (!c.envelope.contains(m.point(to), m.point(x))) return false;
 
-  // Tagged edges of `from` move to `to`.
-  struct Moved {
-    int x;
-    EdgeFeature f;
-  };
-  std::vector<Moved> moved;
-  std::vector<int> merged;
-  for (const TaggedEdge& e : m.tagged_edges(from)) {
-    const int x = e.other;
-    if (x == to) continue;
-    const EdgeFeature* g = &e.feature;
-    EdgeFeature h = *g;
-    if (g->kind == EdgeKind::secondary && !c.envelope.contains(m.point(to), m.point(x))) return false;
-    if (g->kind == EdgeKind::primary) {
-      if (!edge || edge->kind != EdgeKind::primary || edge->source != g->source) return false;
-      const double tx = param_at(*g, from, x, x), tt = param_at(*edge, from, to, to);
-      if (c.sections[g->source].turning(tx, tt) > turning_limit(c)) return false;
-      h = primary_edge(*g, x, tx, to, tt);
-    }
-    // Two tagged edges merge into one. A secondary edge only asks to stay inside the envelope
-    // (checked above), so it may merge into any edge, which keeps the stronger tag; a curve or
-    // box side never merges into another.
-    if (const EdgeFeature* existing = m.feature(to, x)) {
-      if (g->kind != EdgeKind::secondary && existing->kind != EdgeKind::secondary) return false;
-      if (g->kind == EdgeKind::secondary) {
-        merged.push_back(x);  // (to, x) keeps its own tag
-        continue;
-      }
-    }
-    moved.push_back({x, h});
-  }
-
+  const bool had_edge = m.feature(from, to) != nullptr;
   for (int t : removed) m.remove_triangle(t);
   for (std::size_t i = 0; i < kept.size(); ++i) m.set_triangle(kept[i], replaced[i]);
-  if (edge) m.clear_feature(from, to);
-  for (int x : merged) m.clear_feature(from, x);
+  if (had_edge) m.clear_feature(from, to);
+  for (int x : tags.merged) m.clear_feature(from, x);
   bool gained_secondary = false;
-  for (const Moved& mv : moved) {
+  for (const CollapseTags::Moved& mv : tags.moved) {
     m.clear_feature(from, mv.x);
     m.set_feature(to, mv.x, mv.f);
     gained_secondary |= mv.f.kind == EdgeKind::secondary;

@@ -25,6 +25,12 @@ int split_edge(TriMesh& mesh, const Constraints& constraints, int a, int b, doub
 // new triangles is at most max(largest before, energy_bound). §4.1: curve endpoints never move.
 bool collapse_edge(TriMesh& mesh, const Constraints& constraints, int from, int to, double energy_bound);
 
+// The tests of collapse_edge on tags and curves alone (which vertex may move along which edge, how
+// far a curve edge would turn, which tagged edges may merge): the cheapest, and those that refuse
+// most collapses. collapse_edge makes them too; a caller with costly tests of its own makes these
+// first.
+bool collapse_allowed_by_tags(const TriMesh& mesh, const Constraints& constraints, int from, int to);
+
 // Replaces the diagonal (a, b) of the quad formed by its two triangles by the other diagonal,
 // if the largest AMIPS energy of the two triangles decreases or stays at most energy_bound.
 // Tagged edges never swap.
