@@ -259,12 +259,16 @@ std::vector<int> TriMesh::compact() {
   exact_points_ = std::move(exact_points);
   triangles_ = std::move(triangles);
   tagged_ = std::move(tagged);
+  // The incidence lists, each allocated once at its size: removed elements must not keep their
+  // memory (and growing a list by doubling, then shrinking it, allocated five times per vertex).
+  std::vector<int> degree(next, 0);
+  for (const auto& tri : triangles_)
+    for (int v : tri) ++degree[v];
   vertex_triangles_.assign(next, {});
+  for (int v = 0; v < next; ++v) vertex_triangles_[v].reserve(degree[v]);
   for (int t = 0; t < triangle_slots(); ++t)
     for (int v : triangles_[t]) vertex_triangles_[v].push_back(t);
   alive_triangles_ = triangle_slots();
-  // Shrink the incidence lists: removed elements must not keep their memory.
-  for (auto& list : vertex_triangles_) list.shrink_to_fit();
   return remap;
 }
 
