@@ -80,25 +80,35 @@ double turning_angle(const CubicBezier& c, double t0, double t1) {
   if (!(t1 > t0)) return 0.0;
   const double size = polygon_size(c);
   if (!(size > 0)) return 0.0;
-  std::vector<double> ts;
   constexpr int kSamples = 32;
+  std::vector<double> ts;
+  ts.reserve(kSamples + 3);
   for (int i = 0; i <= kSamples; ++i) ts.push_back(t0 + (t1 - t0) * i / kSamples);
   // Inflections inside: the tangent turns back there, which samples alone could miss.
   for (const double t : inflection_parameters(c))
     if (t > t0 && t < t1) ts.push_back(t);
   std::sort(ts.begin(), ts.end());
   // Per interval, the tangent at its start (from above) and at its end (from below); a cusp at a
-  // sample shows as the angle between one interval's end and the next one's start.
+  // sample shows as the angle between one interval's end and the next one's start. Away from a
+  // cusp both are c' there, normalized: the same vector, whose angle to itself is exactly 0
+  // (cross(u, u) is 0 in doubles too), so it is computed once and its angle not at all.
   double total = 0.0;
   Vec2 previous_end(0, 0);
-  bool first = true;
+  bool first = true, previous_regular = false;
+  double previous_b = 0;
   for (std::size_t i = 0; i + 1 < ts.size(); ++i) {
     const double a = ts[i], b = ts[i + 1];
     if (b <= a) continue;
-    const Vec2 start = tangent(c, a, a, b, size), end = tangent(c, b, a, b, size);
-    if (!first) total += angle_between(previous_end, start);
+    const bool reuse = previous_regular && previous_b == a;
+    const Vec2 start = reuse ? previous_end : tangent(c, a, a, b, size);
+    const Vec2 d = c.derivative(b);
+    const bool regular = d.norm() > 1e-12 * size;
+    const Vec2 end = regular ? Vec2(d / d.norm()) : tangent(c, b, a, b, size);
+    if (!first && !reuse) total += angle_between(previous_end, start);
     total += angle_between(start, end);
     previous_end = end;
+    previous_regular = regular;
+    previous_b = b;
     first = false;
   }
   return total;
