@@ -43,6 +43,9 @@ SegmentEnvelope::SegmentEnvelope(std::vector<std::array<Vec2, 2>> segments, doub
   const double m = std::max({std::abs(box.min.x()), std::abs(box.min.y()), std::abs(box.max.x()),
                              std::abs(box.max.y()), epsilon_});
   accept_ = epsilon_ * (1 - 1e-9) - 64 * kUnit * m;
+  // A point farther than accept_ + margin_ from a segment's bounding box in x or in y is farther
+  // than accept_ from the segment in `distance` too, whatever its rounding (a few u M, as above).
+  reject_ = accept_ + 1e-9 * m;
   min_piece_ = epsilon_ / 64;
 
   // Cells about as many as segments (at least ε wide), capped.
@@ -103,8 +106,16 @@ bool SegmentEnvelope::one_capsule(const Vec2& p, const Vec2& q) const {
   if (accept_ <= 0) return false;
   const int c = cell_of(p);
   if (c < 0) return false;  // farther than ε from every segment
+  // The bounding boxes first: most segments of a cell are not near both points, and a few
+  // comparisons spare two divisions and square roots.
+  const auto far = [&](const Vec2& x, const std::array<Vec2, 2>& s) {
+    for (int i = 0; i < 2; ++i)
+      if (std::min(s[0][i], s[1][i]) - x[i] > reject_ || x[i] - std::max(s[0][i], s[1][i]) > reject_) return true;
+    return false;
+  };
   for (int k = start_[c]; k < start_[c + 1]; ++k) {
     const auto& s = segments_[items_[k]];
+    if (far(p, s) || far(q, s)) continue;
     if (distance(p, s[0], s[1]) <= accept_ && distance(q, s[0], s[1]) <= accept_) return true;
   }
   return false;

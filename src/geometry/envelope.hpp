@@ -34,6 +34,7 @@ class SegmentEnvelope {
   std::vector<std::array<Vec2, 2>> segments_;
   double epsilon_ = 0;
   double accept_ = -1;  // ε less the rounding error bound; nothing is accepted when negative
+  double reject_ = -1;  // beyond it from a segment's bounding box, beyond accept_ from the segment
   double min_piece_ = 0;
   // A uniform grid over the segments' box grown by ε; each cell lists every segment that comes
   // within ε of it (compressed rows: cell c's segments are items_[start_[c] .. start_[c + 1])).
