@@ -85,8 +85,13 @@ bool is_edge(const TriMesh& m, int a, int b) {
 // than its neighbour's size plus `gradation` times their distance (Dijkstra from the smallest).
 void grade(const TriMesh& m, std::vector<double>& size, double gradation) {
   using Item = std::pair<double, int>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
-  for (int v = 0; v < m.vertex_count(); ++v) queue.emplace(size[v], v);
+  // A vertex at the largest size lowers no neighbour (its bound is at least that size): it need
+  // not be looked at. The queue orders by size, then vertex, so the heap is built at once.
+  const double largest = size.empty() ? 0 : *std::max_element(size.begin(), size.end());
+  std::vector<Item> items;
+  for (int v = 0; v < m.vertex_count(); ++v)
+    if (size[v] < largest) items.emplace_back(size[v], v);
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue(std::greater<>{}, std::move(items));
   while (!queue.empty()) {
     const auto [s, v] = queue.top();
     queue.pop();
