@@ -37,6 +37,7 @@ Json report_line(const Drawing& d, Status status, double seconds, double peak_mb
   line["max_amips"] =
       meshed ? (curved ? figure(stats, "curve", "max_amips") : figure(stats, "mesh", "max_amips")) : Json();
   line["fitted_edges"] = meshed && curved ? figure(stats, "curve", "fitted_edges") : Json();
+  line["straight_primary_edges"] = meshed && curved ? figure(stats, "curve", "straight_primary_edges") : Json();
   line["max_distance_rel"] = meshed && curved ? figure(stats, "curve", "max_distance_rel") : Json();
   line["mean_fit_distance_rel"] = meshed && curved ? figure(stats, "curve", "mean_fit_distance_rel") : Json();
   line["check_invalid"] = check_invalid;

@@ -151,7 +151,8 @@ Runner add_batch_command(CLI::App& app) {
       "--report", args->report,
       "the JSON Lines report: one object per drawing with path, status (ok, invalid-input, timeout, "
       "out-of-memory, crash, invalid-output, skipped), seconds, peak_mb, triangles, "
-      "curved_triangles, min_angle_deg, max_amips, fitted_edges, max_distance_rel, "
+      "curved_triangles, min_angle_deg, max_amips, fitted_edges, straight_primary_edges (primary edges "
+      "left straight, off their curve), max_distance_rel, "
       "mean_fit_distance_rel, check_invalid, message, output (default: OUTDIR/report.jsonl, "
       "OUTDIR/report-K-of-N.jsonl with --shard)");
   cmd->add_flag("--force", args->force,

@@ -62,7 +62,8 @@ NUMBER, INT, STR = (int, float), int, str
 SCHEMA = {"path": (STR,), "status": (STR,), "seconds": NUMBER, "peak_mb": NUMBER,
           "triangles": (INT, type(None)), "curved_triangles": (INT, type(None)),
           "min_angle_deg": NUMBER + (type(None),), "max_amips": NUMBER + (type(None),),
-          "fitted_edges": (INT, type(None)), "max_distance_rel": NUMBER + (type(None),),
+          "fitted_edges": (INT, type(None)), "straight_primary_edges": (INT, type(None)),
+          "max_distance_rel": NUMBER + (type(None),),
           "mean_fit_distance_rel": NUMBER + (type(None),), "check_invalid": (INT, type(None)),
           "message": (STR,)}
 STATUSES = {"ok", "invalid-input", "timeout", "out-of-memory", "crash", "invalid-output", "skipped"}
@@ -99,7 +100,8 @@ for n in example_names:
     check(f"main run: {n}: mesh written under OUTDIR with the same name", os.path.exists(msh), msh)
     check(f"main run: {n}: certified by check (check_invalid 0)", l.get("check_invalid") == 0, l.get("check_invalid"))
     check(f"main run: {n}: curved figures present",
-          all(isinstance(l.get(k), (int, float)) for k in ("curved_triangles", "max_distance_rel", "fitted_edges"))
+          all(isinstance(l.get(k), (int, float))
+              for k in ("curved_triangles", "max_distance_rel", "fitted_edges", "straight_primary_edges"))
           and (l.get("curved_triangles") or 0) > 0, l)
     check(f"main run: {n}: time and peak memory measured",
           0 < l.get("seconds", 0) < 60 and 1 < l.get("peak_mb", 0) < 4000, (l.get("seconds"), l.get("peak_mb")))
@@ -111,6 +113,9 @@ for n in example_names:
               (stats["mesh"]["triangles"], l.get("triangles")))
         check(f"main run: {n}: max AMIPS is the curved one", stats["curve"]["max_amips"] == l.get("max_amips"),
               (stats["curve"]["max_amips"], l.get("max_amips")))
+        check(f"main run: {n}: straight primary edges as in the statistics",
+              stats["curve"]["straight_primary_edges"] == l.get("straight_primary_edges"),
+              (stats["curve"]["straight_primary_edges"], l.get("straight_primary_edges")))
     except (OSError, KeyError, json.JSONDecodeError) as e:
         check(f"main run: {n}: statistics readable", False, str(e))
 bad = first.get(malformed, {})
@@ -148,7 +153,8 @@ r, _ = run("batch", os.path.join(inputs, example_names[0]), "-o", out, "--linear
           os.path.join(root, "relinear.jsonl"))
 l = read_report(os.path.join(root, "relinear.jsonl"))
 check("options changed: redone, not skipped", [x.get("status") for x in l] == ["ok"], l)
-check("options changed: --linear forwarded (no curved figures)", l and l[0].get("curved_triangles") is None, l)
+check("options changed: --linear forwarded (no curved figures)",
+      l and l[0].get("curved_triangles") is None and l[0].get("straight_primary_edges") is None, l)
 
 # --- A drawing that takes too long: killed at the time limit ------------------------------------
 rng = random.Random(7)
