@@ -252,6 +252,45 @@ MeshState state_of(const TriMesh& m) {
   return s;
 }
 
+// collapse_allowed_by_tags makes the tests of collapse_edge on tags and curves alone: where it
+// refuses, collapse_edge refuses too and changes nothing; every collapse made was allowed. On
+// every directed edge of grids whose curve may turn at most 10° and 1.5° per edge (the second
+// refuses merging curve edges by turning).
+TEST(MeshOperations, CollapseAllowedByTagsAgreesWithCollapseEdge) {
+  int refused_by_tags = 0, refused_by_turning = 0, refused_later = 0, made = 0;
+  for (const double turning_deg : {10.0, 1.5})
+    for (unsigned seed : {1u, 2u, 3u}) {
+      Fixture f = make_grid(8, seed);
+      f.constraints.max_turning = turning_deg * M_PI / 180;
+      const MeshState original = state_of(f.mesh);
+      for (const auto& e : edges_of(f.mesh))
+        for (int from : {e[0], e[1]}) {
+          const int to = e[0] + e[1] - from;
+          for (const double bound : {10.0, 1e9}) {
+            TriMesh copy = f.mesh;
+            const bool allowed = collapse_allowed_by_tags(copy, f.constraints, from, to);
+            const bool done = collapse_edge(copy, f.constraints, from, to, bound);
+            if (!allowed) {
+              EXPECT_FALSE(done) << from << " -> " << to;
+              EXPECT_TRUE(state_of(copy) == original) << from << " -> " << to;
+              const EdgeFeature* g = f.mesh.feature(from, to);
+              const bool along_curve = f.mesh.tag(from).kind == VertexKind::primary && g &&
+                                       g->kind == EdgeKind::primary && g->source == f.mesh.tag(from).section;
+              ++(along_curve ? refused_by_turning : refused_by_tags);
+            } else if (done) {
+              ++made;
+            } else {
+              ++refused_later;
+            }
+          }
+        }
+    }
+  EXPECT_GT(refused_by_tags, 100);
+  EXPECT_GT(refused_by_turning, 10);  // with α = 1.5°: two curve edges of the grid turn more
+  EXPECT_GT(refused_later, 10);       // by energy, orientation, the link condition or the envelope
+  EXPECT_GT(made, 100);
+}
+
 TEST(MeshOperations, RolledBackOperationsLeaveTheMeshAsItWas) {
   // Runs of random committed operations under a journal: rolled back, the mesh is the one before
   // (every array and tag compared); committed, the changes stay.
