@@ -173,6 +173,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
   double best_max = s.initial.max_amips;
   int fruitless_refinements = 0;
   long previous_changes = -1;  // none before the first iteration
+  int previous_triangles = 0;
 
   for (; s.iterations < o.max_iterations; ++s.iterations) {
     long changes = 0;  // splits and collapses: the sizing work done in this iteration
@@ -271,9 +272,14 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
     const bool good = q.min_angle_deg >= o.stop_min_angle_deg || q.max_amips <= o.stop_max_amips;
     // The stop rule of §4.1 applies once the sizes are met: little is left to split or collapse
     // (2 % of the triangles), or what is left no longer shrinks by a fifth per pass (the churn
-    // that smoothing and swapping cause, not sizing work).
-    const bool sizes_met = 50 * changes <= q.triangles || (previous_changes >= 0 && 5 * changes > 4 * previous_changes);
+    // that smoothing and swapping cause, not sizing work). A mesh that grew by more than a
+    // quarter in the pass is still refining toward the target, not churning: with a small target
+    // every pass splits about twice as many edges as the one before.
+    const bool churn = previous_changes >= 0 && 5 * changes > 4 * previous_changes &&
+                       4 * (q.triangles - previous_triangles) <= previous_triangles;
+    const bool sizes_met = 50 * changes <= q.triangles || churn;
     previous_changes = changes;
+    previous_triangles = q.triangles;
     if (good && sizes_met) {
       s.stop_reason = "quality";
       ++s.iterations;

@@ -140,6 +140,41 @@ TEST(Api, LinearMeshArrays) {
   EXPECT_EQ(m.stats_json().find("\"curve\""), std::string::npos);
 }
 
+// -l means what it says: away from features the edges are about l long. Two short segments at
+// opposite corners of a 100 × 100 drawing (d = 100√2) and a small circle near one of them leave
+// the middle empty; the mean length of the edges with no end on a feature line (or the box) is
+// within [0.8, 1.25] l d. (With small targets the optimizer used to stop while it was still
+// refining, each pass splitting twice as many edges as the one before: at l = 0.01 the edges
+// were 1.5 l long.)
+TEST(Api, TargetEdgeLengthHoldsAwayFromFeatures) {
+  const std::string svg =
+      R"(<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">)"
+      R"(<path d="M 0 0 L 1 0" stroke="black" fill="none"/><path d="M 99 100 L 100 100" stroke="black" fill="none"/>)"
+      R"(<circle cx="20" cy="20" r="5" stroke="black" fill="none"/></svg>)";
+  const double d = 100 * std::sqrt(2.0);
+  for (const double l : {0.01, 0.02, 0.05}) {
+    Parameters p;
+    p.linear = true;
+    p.edge_length_rel = l;
+    const Mesh m = mesh_svg(svg, p);
+    std::set<std::int64_t> on_features(m.lines().begin(), m.lines().end());
+    std::set<std::pair<std::int64_t, std::int64_t>> edges;
+    const auto& t = m.triangles();
+    for (std::size_t k = 0; k < t.size(); k += 3)
+      for (int i = 0; i < 3; ++i) {
+        const std::int64_t a = t[k + i], b = t[k + (i + 1) % 3];
+        if (!on_features.count(a) && !on_features.count(b)) edges.insert(std::minmax(a, b));
+      }
+    double sum = 0;
+    for (const auto& [a, b] : edges)
+      sum += std::hypot(m.nodes()[a][0] - m.nodes()[b][0], m.nodes()[a][1] - m.nodes()[b][1]);
+    ASSERT_GT(edges.size(), 300u) << "l = " << l;
+    const double mean = sum / static_cast<double>(edges.size()) / (l * d);
+    EXPECT_GE(mean, 0.8) << "l = " << l;
+    EXPECT_LE(mean, 1.25) << "l = " << l;
+  }
+}
+
 // The same drawing through the API and through the pipeline as `curvemesh mesh` runs it: the
 // same arrays as high_order_mesh, and every file byte for byte the same.
 TEST(Api, SameMeshAndFilesAsTheCommandLine) {
