@@ -43,8 +43,9 @@ SegmentEnvelope::SegmentEnvelope(std::vector<std::array<Vec2, 2>> segments, doub
   const double m = std::max({std::abs(box.min.x()), std::abs(box.min.y()), std::abs(box.max.x()),
                              std::abs(box.max.y()), epsilon_});
   accept_ = epsilon_ * (1 - 1e-9) - 64 * kUnit * m;
-  // A point farther than accept_ + margin_ from a segment's bounding box in x or in y is farther
-  // than accept_ from the segment in `distance` too, whatever its rounding (a few u M, as above).
+  // A point farther than reject_ from a segment's bounding box in x or in y is farther than
+  // accept_ from the segment in `distance` too: the margin, 1e-9 M, is far above the rounding of
+  // `distance` (a few u M, as above).
   reject_ = accept_ + 1e-9 * m;
   min_piece_ = epsilon_ / 64;
 

@@ -276,7 +276,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
     // quarter in the pass is still refining toward the target, not churning: with a small target
     // every pass splits about twice as many edges as the one before.
     const bool churn = previous_changes >= 0 && 5 * changes > 4 * previous_changes &&
-                       4 * (q.triangles - previous_triangles) <= previous_triangles;
+                       4L * (q.triangles - previous_triangles) <= previous_triangles;
     const bool sizes_met = 50 * changes <= q.triangles || churn;
     previous_changes = changes;
     previous_triangles = q.triangles;
