@@ -57,7 +57,8 @@ struct ArrangementVertex {
   void set_exact(geometry::ExactPoint e) {
     exact = std::move(e);
     approx = geometry::nearest_double(exact);
-    exact_needed = geometry::ExactPoint(approx).x != exact.x || geometry::ExactPoint(approx).y != exact.y;
+    const geometry::ExactPoint rounded(approx);
+    exact_needed = rounded.x != exact.x || rounded.y != exact.y;
   }
 };
 
