@@ -6,8 +6,6 @@
 
 namespace curvemesh::geometry {
 
-double amips(const Vec2& a, const Vec2& b, const Vec2& c) { return amips_of_edges(b - a, c - a); }
-
 AmipsDerivatives& AmipsDerivatives::operator+=(const AmipsDerivatives& o) {
   energy += o.energy;
   gradient += o.gradient;
