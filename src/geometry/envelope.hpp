@@ -28,7 +28,8 @@ class SegmentEnvelope {
  private:
   // Whether p and q are both within the accepted distance of one segment in p's cell.
   bool one_capsule(const Vec2& p, const Vec2& q) const;
-  bool covered(const Vec2& p, const Vec2& q, int depth) const;
+  bool covered(const Vec2& p, const Vec2& q, int depth) const;         // one capsule, or both halves
+  bool halves_covered(const Vec2& p, const Vec2& q, int depth) const;  // both halves, bisecting
   int cell_of(const Vec2& p) const;  // -1 outside the grid
 
   std::vector<std::array<Vec2, 2>> segments_;
