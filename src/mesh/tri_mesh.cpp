@@ -198,8 +198,10 @@ std::vector<int> TriMesh::neighbours(int v) const {
   return out;
 }
 
+// Without exact positions at all (most meshes), no vertex needs a look in exact_index_.
 int TriMesh::orientation(int a, int b, int c) const {
-  if (!has_exact(a) && !has_exact(b) && !has_exact(c)) return geometry::orientation(points_[a], points_[b], points_[c]);
+  if (exact_points_.empty() || (!has_exact(a) && !has_exact(b) && !has_exact(c)))
+    return geometry::orientation(points_[a], points_[b], points_[c]);
   return geometry::orientation(exact_or_double(a), exact_or_double(b), exact_or_double(c));
 }
 
@@ -211,7 +213,7 @@ int TriMesh::orientation(int t) const {
 int TriMesh::orientation_with(int a, int b, int c, int moved, const Vec2& p) const {
   const auto exact_at = [&](int v) { return v == moved ? ExactPoint(p) : exact_or_double(v); };
   const auto inexact = [&](int v) { return v != moved && has_exact(v); };
-  if (!inexact(a) && !inexact(b) && !inexact(c)) {
+  if (exact_points_.empty() || (!inexact(a) && !inexact(b) && !inexact(c))) {
     const auto at = [&](int v) -> const Vec2& { return v == moved ? p : points_[v]; };
     return geometry::orientation(at(a), at(b), at(c));
   }
@@ -244,28 +246,45 @@ std::vector<int> TriMesh::compact() {
   triangles.reserve(alive_triangles_);
   for (const auto& tri : triangles_)
     if (tri[0] >= 0) triangles.push_back({remap[tri[0]], remap[tri[1]], remap[tri[2]]});
-  // The renumbering keeps the order of vertices: the lists stay sorted, and t_lo stays with the
-  // lower end.
-  std::vector<std::vector<TaggedEdge>> tagged(next);
-  for (int v = 0; v < n; ++v)
-    for (const TaggedEdge& e : tagged_[v]) {
-      const int a = remap[v], b = remap[e.other];
-      if (a >= 0 && b >= 0) tagged[a].push_back({b, e.feature});
-    }
+  // The renumbering keeps the order of vertices (a vertex moves to the same or a lower index):
+  // each list moves down in place, the tagged ones stay sorted, and t_lo stays with the lower end.
+  for (int v = 0; v < n; ++v) {
+    const int w = remap[v];
+    if (w < 0) continue;
+    std::vector<TaggedEdge>& list = tagged_[v];
+    std::erase_if(list, [&](const TaggedEdge& e) { return remap[e.other] < 0; });
+    for (TaggedEdge& e : list) e.other = remap[e.other];
+    if (w != v) tagged_[w] = std::move(list);
+  }
+  tagged_.resize(next);
 
   points_ = std::move(points);
   vertex_tags_ = std::move(tags);
   exact_index_ = std::move(exact_index);
   exact_points_ = std::move(exact_points);
   triangles_ = std::move(triangles);
-  tagged_ = std::move(tagged);
-  // The incidence lists, each allocated once at its size: removed elements must not keep their
-  // memory (and growing a list by doubling, then shrinking it, allocated five times per vertex).
+  // The incidence lists, refilled in triangle order. A list keeps its memory when that is at
+  // least its size and at most twice it, and is allocated once at its size otherwise: removed
+  // elements must not keep their memory, and allocating every list anew on every compaction
+  // (growing by doubling, as links do, allocated five times per vertex) cost more than the refill.
   std::vector<int> degree(next, 0);
   for (const auto& tri : triangles_)
     for (int v : tri) ++degree[v];
-  vertex_triangles_.assign(next, {});
-  for (int v = 0; v < next; ++v) vertex_triangles_[v].reserve(degree[v]);
+  for (int v = 0; v < n; ++v) {
+    const int w = remap[v];
+    if (w >= 0 && w != v) vertex_triangles_[w] = std::move(vertex_triangles_[v]);
+  }
+  vertex_triangles_.resize(next);
+  for (int v = 0; v < next; ++v) {
+    std::vector<int>& list = vertex_triangles_[v];
+    const auto size = static_cast<std::size_t>(degree[v]);
+    list.clear();
+    if (list.capacity() < size || list.capacity() > 2 * size) {
+      std::vector<int> fresh;
+      fresh.reserve(size);
+      list.swap(fresh);
+    }
+  }
   for (int t = 0; t < triangle_slots(); ++t)
     for (int v : triangles_[t]) vertex_triangles_[v].push_back(t);
   alive_triangles_ = triangle_slots();
