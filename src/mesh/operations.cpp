@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <boost/container/small_vector.hpp>
 #include <cmath>
 #include <limits>
 #include <span>
@@ -76,6 +77,21 @@ StarEnergy star_energy(const TriMesh& m, int v, const Vec2& p) {
     e.max = std::max(e.max, a);
   }
   return e;
+}
+
+// Whether v's star with v at p has a smaller summed energy than `sum` and no triangle above
+// `max`: star_energy's verdict, but it stops at the first triangle that decides it (the energies
+// are positive, so the running sum never decreases). Most positions a line search tries fail.
+bool star_improves(const TriMesh& m, int v, const Vec2& p, double sum, double max) {
+  double e = 0;
+  for (int t : m.triangles_of(v)) {
+    const auto& tri = m.triangle(t);
+    const double a = geometry::amips(p, m.point(next_corner(tri, v)), m.point(prev_corner(tri, v)));
+    if (!(a <= max)) return false;
+    e += a;
+    if (!(e < sum)) return false;
+  }
+  return true;
 }
 
 geometry::AmipsDerivatives star_derivatives(const TriMesh& m, int v, const Vec2& p) {
@@ -220,7 +236,28 @@ int split_edge(TriMesh& m, const Constraints& c, int a, int b, double energy_bou
   return mid;
 }
 
+bool collapse_allowed_by_kind(const TriMesh& m, int from, int to) {
+  const VertexTag& tag = m.tag(from);
+  if (tag.kind == VertexKind::fixed || tag.isolated) return false;
+  const EdgeFeature* edge = m.feature(from, to);
+  switch (tag.kind) {
+    case VertexKind::primary:
+      return edge && edge->kind == EdgeKind::primary && edge->source == tag.section;
+    case VertexKind::boundary:
+      return edge && edge->kind == EdgeKind::boundary && edge->source == tag.side;
+    case VertexKind::secondary:
+      return !edge || edge->kind == EdgeKind::secondary;
+    default:
+      return !edge;
+  }
+}
+
 namespace {
+
+// Stars and tag lists are short: the lists a collapse builds live on the stack unless one is not
+// (a malloc and a free each cost about as much as the tests on tags).
+template <class T>
+using StarList = boost::container::small_vector<T, 16>;
 
 // What a collapse of `from` into `to` does to the tagged edges of `from`: those that move to `to`
 // (a curve edge with its parameter at `to`), the secondary ones that merge into an edge `to` has
@@ -230,30 +267,16 @@ struct CollapseTags {
     int x;
     EdgeFeature f;
   };
-  std::vector<Moved> moved;
-  std::vector<int> merged, in_envelope;
+  StarList<Moved> moved;
+  StarList<int> merged, in_envelope;
 };
 
 // The rules of a collapse on tags and curves alone: which vertices may move along which edge, how
 // far a curve edge would turn, which tagged edges may merge. Fills `out` when given; false as soon
 // as a rule refuses.
 bool collapse_tags(const TriMesh& m, const Constraints& c, int from, int to, CollapseTags* out) {
-  const VertexTag& tag = m.tag(from);
-  if (tag.kind == VertexKind::fixed || tag.isolated) return false;
+  if (!collapse_allowed_by_kind(m, from, to)) return false;
   const EdgeFeature* edge = m.feature(from, to);
-  switch (tag.kind) {
-    case VertexKind::primary:
-      if (!edge || edge->kind != EdgeKind::primary || edge->source != tag.section) return false;
-      break;
-    case VertexKind::boundary:
-      if (!edge || edge->kind != EdgeKind::boundary || edge->source != tag.side) return false;
-      break;
-    case VertexKind::secondary:
-      if (edge && edge->kind != EdgeKind::secondary) return false;
-      break;
-    default:
-      if (edge) return false;
-  }
   for (const TaggedEdge& e : m.tagged_edges(from)) {
     const int x = e.other;
     if (x == to) continue;
@@ -287,14 +310,17 @@ bool collapse_allowed_by_tags(const TriMesh& m, const Constraints& c, int from, 
   return collapse_tags(m, c, from, to, nullptr);
 }
 
-bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double energy_bound) {
+namespace {
+
+bool collapse_checked(TriMesh& m, const Constraints& c, int from, int to, double energy_bound, const CollapseTest* also) {
   // The tests on tags and curves refuse most collapses and are the cheapest: they come first, then
-  // the energies, the exact orientations, the link condition and the envelope.
+  // the caller's own, the energies, the exact orientations, the link condition and the envelope.
   CollapseTags tags;
   if (!collapse_tags(m, c, from, to, &tags)) return false;
+  if (also && !(*also)(from, to)) return false;
 
   const std::vector<int>& star = m.triangles_of(from);  // read before the mesh changes
-  std::vector<int> removed, kept, opposite;
+  StarList<int> removed, kept, opposite;
   for (int t : star) {
     const auto& tri = m.triangle(t);
     if (tri[0] == to || tri[1] == to || tri[2] == to) {
@@ -308,8 +334,7 @@ bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double en
   // Energy and orientation (exact) of the triangles that stay, with `from` replaced by `to`, the
   // energy before the exact test.
   double before = max_amips_of(m, star), after = 0;
-  std::vector<Triangle> replaced;
-  replaced.reserve(kept.size());
+  StarList<Triangle> replaced;
   for (int t : kept) {
     Triangle tri = m.triangle(t);
     for (int& v : tri)
@@ -321,14 +346,16 @@ bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double en
   for (const Triangle& tri : replaced)
     if (m.orientation(tri[0], tri[1], tri[2]) <= 0) return false;
 
-  // Link condition: the common neighbours of the edge's ends are exactly the opposite corners.
-  {
-    const auto nf = m.neighbours(from), nt = m.neighbours(to);
-    std::vector<int> common;
-    std::set_intersection(nf.begin(), nf.end(), nt.begin(), nt.end(), std::back_inserter(common));
-    std::sort(opposite.begin(), opposite.end());
-    if (common != opposite) return false;
-  }
+  // Link condition: the common neighbours of the edge's ends are exactly the opposite corners
+  // (which are common neighbours): no other neighbour of `from` is one of `to`.
+  for (int t : star)
+    for (int w : m.triangle(t)) {
+      if (w == from || w == to || std::find(opposite.begin(), opposite.end(), w) != opposite.end()) continue;
+      for (int u : m.triangles_of(to)) {
+        const auto& tri = m.triangle(u);
+        if (tri[0] == w || tri[1] == w || tri[2] == w) return false;
+      }
+    }
   for (int x : tags.in_envelope)
     if (!c.envelope.contains(m.point(to), m.point(x))) return false;
 
@@ -351,9 +378,24 @@ bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double en
   return true;
 }
 
-bool swap_edge(TriMesh& m, int a, int b, double energy_bound) {
+}  // namespace
+
+bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double energy_bound) {
+  return collapse_checked(m, c, from, to, energy_bound, nullptr);
+}
+
+bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double energy_bound, const CollapseTest& also) {
+  return collapse_checked(m, c, from, to, energy_bound, &also);
+}
+
+bool swap_edge(TriMesh& m, int a, int b, double energy_bound, int left_hint) {
   if (m.feature(a, b)) return false;
-  const auto [t1, cc] = triangle_left_of(m, a, b);
+  const auto has_directed = [&](const Triangle& tri) {
+    return (tri[0] == a && tri[1] == b) || (tri[1] == a && tri[2] == b) || (tri[2] == a && tri[0] == b);
+  };
+  const bool hinted = left_hint >= 0 && left_hint < m.triangle_slots() && has_directed(m.triangle(left_hint));
+  // A valid mesh has one triangle with a given directed edge: the hint is the one the walk finds.
+  const auto [t1, cc] = hinted ? std::pair{left_hint, prev_corner(m.triangle(left_hint), a)} : triangle_left_of(m, a, b);
   const auto [t2, d] = triangle_left_of(m, b, a);
   if (t1 < 0 || t2 < 0 || cc == d) return false;
   // Quad a, d, b, c counter-clockwise; the new diagonal is c–d. The energies first: most swaps
@@ -383,10 +425,7 @@ bool smooth_vertex(TriMesh& m, const Constraints& c, int v) {
   const double e0 = start.sum, max0 = start.max;
   const bool finite = std::isfinite(e0);
   // A move is better when the summed energy decreases and the worst triangle gets no worse.
-  const auto better = [&](const Vec2& p) {
-    const StarEnergy e = star_energy(m, v, p);
-    return e.sum < e0 && e.max <= max0;
-  };
+  const auto better = [&](const Vec2& p) { return star_improves(m, v, p, e0, max0); };
   const auto d = finite ? star_derivatives(m, v, x0) : geometry::AmipsDerivatives{};
 
   if (tag.kind == VertexKind::primary) {

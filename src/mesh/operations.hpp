@@ -9,6 +9,8 @@
 //  3. every primary edge covers a curve interval turning at most α;
 //  4. primary vertices move only along their curve, boundary vertices only along their side,
 //     fixed vertices never move and are never removed.
+#include <functional>
+
 #include "mesh/constraints.hpp"
 #include "mesh/invariants.hpp"  // the checks of the invariants below, edge_satisfies_invariants
 #include "mesh/tri_mesh.hpp"
@@ -25,16 +27,30 @@ int split_edge(TriMesh& mesh, const Constraints& constraints, int a, int b, doub
 // new triangles is at most max(largest before, energy_bound). §4.1: curve endpoints never move.
 bool collapse_edge(TriMesh& mesh, const Constraints& constraints, int from, int to, double energy_bound);
 
+// Same, with a test of the caller's own, asked with (from, to) after the tests on tags and curves
+// (the cheapest, which refuse most collapses) and before the others: a costly test of the caller's
+// is then made only where those let the collapse through, and they are made once.
+using CollapseTest = std::function<bool(int from, int to)>;
+bool collapse_edge(TriMesh& mesh, const Constraints& constraints, int from, int to, double energy_bound,
+                   const CollapseTest& also);
+
 // The tests of collapse_edge on tags and curves alone (which vertex may move along which edge, how
 // far a curve edge would turn, which tagged edges may merge): the cheapest, and those that refuse
-// most collapses. collapse_edge makes them too; a caller with costly tests of its own makes these
-// first.
+// most collapses. collapse_edge makes them first (and a caller's test right after them).
 bool collapse_allowed_by_tags(const TriMesh& mesh, const Constraints& constraints, int from, int to);
+
+// The first of those tests, on the kinds alone: whether `from` may move along the edge to `to` at
+// all (a fixed vertex never moves, a curve's only along its curve, a side's along its side, a free
+// or secondary one off every curve and side). It reads only the tag of `from` and the edge's,
+// which a collapse changes only at its own two ends: a pass that looks again at no edge whose
+// ends a collapse changed may ask it for every edge before the pass.
+bool collapse_allowed_by_kind(const TriMesh& mesh, int from, int to);
 
 // Replaces the diagonal (a, b) of the quad formed by its two triangles by the other diagonal,
 // if the largest AMIPS energy of the two triangles decreases or stays at most energy_bound.
-// Tagged edges never swap.
-bool swap_edge(TriMesh& mesh, int a, int b, double energy_bound = 0);
+// Tagged edges never swap. `left_hint` may name the triangle with directed edge a -> b, which
+// saves a walk round a's star; it is checked, and any other value is ignored.
+bool swap_edge(TriMesh& mesh, int a, int b, double energy_bound = 0, int left_hint = -1);
 
 // One Newton step (with line search) on the summed AMIPS energy of v's triangles: in the plane
 // for free and secondary vertices, along the curve for primary ones (App. A), along the side

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <gmpxx.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <random>
@@ -197,6 +198,16 @@ TEST(MeshOperations, RandomSequencesKeepEveryInvariant) {
         f.fixed_positions = fixed;
         EXPECT_EQ(f.mesh.triangle_slots(), f.mesh.triangle_count());
         expect_invariants(f, "compaction");
+        // Each incidence list in triangle order, its memory at least its size and at most twice
+        // it (compaction keeps a list's memory only then); each tagged list by its other end.
+        for (int w = 0; w < f.mesh.vertex_count(); ++w) {
+          const auto& list = f.mesh.triangles_of(w);
+          EXPECT_TRUE(std::is_sorted(list.begin(), list.end())) << "vertex " << w;
+          EXPECT_LE(list.capacity(), 2 * list.size()) << "vertex " << w;
+          const auto& tagged = f.mesh.tagged_edges(w);
+          EXPECT_TRUE(std::is_sorted(tagged.begin(), tagged.end(),
+                                     [](const TaggedEdge& x, const TaggedEdge& y) { return x.other < y.other; }));
+        }
       }
     }
     // Each kind of operation was exercised, not just proposed.
@@ -257,7 +268,7 @@ MeshState state_of(const TriMesh& m) {
 // every directed edge of grids whose curve may turn at most 10° and 1.5° per edge (the second
 // refuses merging curve edges by turning).
 TEST(MeshOperations, CollapseAllowedByTagsAgreesWithCollapseEdge) {
-  int refused_by_tags = 0, refused_by_turning = 0, refused_later = 0, made = 0;
+  int refused_by_kind = 0, refused_by_tags = 0, refused_by_turning = 0, refused_later = 0, made = 0;
   for (const double turning_deg : {10.0, 1.5})
     for (unsigned seed : {1u, 2u, 3u}) {
       Fixture f = make_grid(8, seed);
@@ -268,7 +279,12 @@ TEST(MeshOperations, CollapseAllowedByTagsAgreesWithCollapseEdge) {
           const int to = e[0] + e[1] - from;
           for (const double bound : {10.0, 1e9}) {
             TriMesh copy = f.mesh;
+            const bool by_kind = collapse_allowed_by_kind(copy, from, to);
             const bool allowed = collapse_allowed_by_tags(copy, f.constraints, from, to);
+            if (!by_kind) {
+              EXPECT_FALSE(allowed) << from << " -> " << to;
+              ++refused_by_kind;
+            }
             const bool done = collapse_edge(copy, f.constraints, from, to, bound);
             if (!allowed) {
               EXPECT_FALSE(done) << from << " -> " << to;
@@ -285,10 +301,78 @@ TEST(MeshOperations, CollapseAllowedByTagsAgreesWithCollapseEdge) {
           }
         }
     }
+  EXPECT_GT(refused_by_kind, 100);
+  EXPECT_GT(refused_by_tags, refused_by_kind / 2);  // the tests after the kinds refuse too
   EXPECT_GT(refused_by_tags, 100);
   EXPECT_GT(refused_by_turning, 10);  // with α = 1.5°: two curve edges of the grid turn more
   EXPECT_GT(refused_later, 10);       // by energy, orientation, the link condition or the envelope
   EXPECT_GT(made, 100);
+}
+
+// A collapse with a test of the caller's: the test is asked only where the tags and curves allow
+// the collapse, and only then; when it says yes the collapse is the one without it, when it says
+// no nothing changes.
+TEST(MeshOperations, TheCallersCollapseTestComesAfterTheTagsAndDecides) {
+  int asked = 0, made = 0;
+  for (unsigned seed : {1u, 2u}) {
+    Fixture f = make_grid(8, seed);
+    const MeshState original = state_of(f.mesh);
+    for (const auto& e : edges_of(f.mesh))
+      for (int from : {e[0], e[1]}) {
+        const int to = e[0] + e[1] - from;
+        const bool allowed = collapse_allowed_by_tags(f.mesh, f.constraints, from, to);
+        TriMesh plain = f.mesh, yes = f.mesh, no = f.mesh;
+        int calls = 0;
+        const bool done = collapse_edge(plain, f.constraints, from, to, 10.0);
+        const bool done_yes = collapse_edge(yes, f.constraints, from, to, 10.0, [&](int x, int y) {
+          ++calls;
+          EXPECT_EQ(x, from);
+          EXPECT_EQ(y, to);
+          return true;
+        });
+        EXPECT_EQ(calls, allowed ? 1 : 0) << from << " -> " << to;
+        EXPECT_EQ(done_yes, done) << from << " -> " << to;
+        EXPECT_TRUE(state_of(yes) == state_of(plain)) << from << " -> " << to;
+        EXPECT_FALSE(collapse_edge(no, f.constraints, from, to, 10.0, [](int, int) { return false; }));
+        EXPECT_TRUE(state_of(no) == original) << from << " -> " << to;
+        asked += calls;
+        made += done;
+      }
+  }
+  EXPECT_GT(asked, 100);
+  EXPECT_GT(made, 50);
+}
+
+// A swap given the triangle left of a -> b as a hint does what it does without one, and a wrong
+// hint (any other triangle at a or b, a dead one, none at all) is ignored.
+TEST(MeshOperations, ASwapHintIsCheckedAndChangesNothingElse) {
+  int swapped = 0;
+  for (unsigned seed : {1u, 2u, 3u}) {
+    Fixture f = make_grid(8, seed);
+    f.mesh.remove_triangle(0);  // a dead slot to hint at
+    for (const auto& e : edges_of(f.mesh))
+      for (const auto& [a, b] : {std::pair{e[0], e[1]}, std::pair{e[1], e[0]}}) {
+        int left = -1;
+        for (int t : f.mesh.triangles_of(a)) {
+          const auto& tri = f.mesh.triangle(t);
+          for (int i = 0; i < 3; ++i)
+            if (tri[i] == a && tri[(i + 1) % 3] == b) left = t;
+        }
+        for (const double bound : {0.0, 1e9}) {
+          TriMesh plain = f.mesh;
+          const bool done = swap_edge(plain, a, b, bound);
+          swapped += done;
+          std::vector<int> hints{left, 0, f.mesh.triangle_slots(), -7};  // 0 is dead
+          for (int v : {a, b}) hints.insert(hints.end(), f.mesh.triangles_of(v).begin(), f.mesh.triangles_of(v).end());
+          for (const int hint : hints) {
+            TriMesh hinted = f.mesh;
+            EXPECT_EQ(swap_edge(hinted, a, b, bound, hint), done) << a << " -> " << b << ", hint " << hint;
+            EXPECT_TRUE(state_of(hinted) == state_of(plain)) << a << " -> " << b << ", hint " << hint;
+          }
+        }
+      }
+  }
+  EXPECT_GT(swapped, 100);
 }
 
 TEST(MeshOperations, RolledBackOperationsLeaveTheMeshAsItWas) {
