@@ -19,18 +19,22 @@ namespace {
 
 
 struct Edge {
-  int a, b;
+  int a, b;  // a < b
   double length;
+  // For collapses: whether a may move onto b, whether b may move onto a (by the kinds).
+  bool a_moves = false, b_moves = false;
 };
 
 // Every edge once, in triangle order (deterministic): an interior edge from the triangle in which
-// it runs from its lower to its higher vertex, a hull edge from its only triangle. Whether an
-// edge running downwards has a reverse (is inside) is asked only where both ends may lie on the
-// hull: on the box, the only hull the optimizer's meshes have. Euler's formula checks that no
-// hull edge was missed (a triangulated disk has V - E + T = 1); if one was (the mesh is not the
-// box's, say), every downward edge is asked. Walking a star per edge was a cache miss or more
-// each: a sixth of the optimization's time.
-std::vector<Edge> all_edges(const TriMesh& m) {
+// it runs from its lower to its higher vertex, a hull edge from its only triangle; those that
+// `keep` keeps. Whether an edge running downwards has a reverse (is inside) is asked only where
+// both ends may lie on the hull: on the box, the only hull the optimizer's meshes have. Euler's
+// formula checks that no hull edge was missed (a triangulated disk has V - E + T = 1); if one was
+// (the mesh is not the box's, say), every downward edge is asked. Walking a star per edge was a
+// cache miss or more each: a sixth of the optimization's time. The filter runs as the edges are
+// found: a pass that wants few of them does not write them all first.
+template <class Keep>
+std::vector<Edge> edges_where(const TriMesh& m, const Keep& keep) {  // keep(Edge&) may fill it in
   const auto has_directed = [&](int a, int b) {
     for (int t : m.triangles_of(a)) {
       const auto& tri = m.triangle(t);
@@ -38,29 +42,55 @@ std::vector<Edge> all_edges(const TriMesh& m) {
     }
     return false;
   };
-  const auto on_box = [&](int v) {
+  // Which vertices are on the box, read in one sweep over the tags rather than once per downward
+  // edge (a cache miss each), and how many vertices the triangles use.
+  std::vector<char> on_box(m.vertex_count(), 0);
+  long used_vertices = 0;
+  for (int v = 0; v < m.vertex_count(); ++v) {
     const mesh::VertexKind k = m.tag(v).kind;
-    return k == mesh::VertexKind::boundary || k == mesh::VertexKind::fixed;
-  };
+    on_box[v] = k == mesh::VertexKind::boundary || k == mesh::VertexKind::fixed;
+    used_vertices += !m.triangles_of(v).empty();
+  }
+  std::vector<Edge> edges;
   const auto collect = [&](bool all_downward) {
-    std::vector<Edge> edges;
-    edges.reserve(3 * static_cast<std::size_t>(m.triangle_count()) / 2 + 8);
+    edges.clear();
+    long count = 0;
     for (int t = 0; t < m.triangle_slots(); ++t) {
       if (!m.alive(t)) continue;
       const auto& tri = m.triangle(t);
       for (int i = 0; i < 3; ++i) {
         const int a = tri[i], b = tri[(i + 1) % 3];
-        if (a < b || ((all_downward || (on_box(a) && on_box(b))) && !has_directed(b, a)))
-          edges.push_back({std::min(a, b), std::max(a, b), (m.point(a) - m.point(b)).norm()});
+        if (a < b || ((all_downward || (on_box[a] && on_box[b])) && !has_directed(b, a))) {
+          ++count;
+          Edge e{std::min(a, b), std::max(a, b), (m.point(a) - m.point(b)).norm()};
+          if (keep(e)) edges.push_back(e);
+        }
       }
     }
-    return edges;
+    return count;
   };
-  std::vector<Edge> edges = collect(false);
-  long used_vertices = 0;
-  for (int v = 0; v < m.vertex_count(); ++v) used_vertices += !m.triangles_of(v).empty();
-  if (used_vertices - static_cast<long>(edges.size()) + m.triangle_count() != 1) edges = collect(true);
+  if (used_vertices - collect(false) + m.triangle_count() != 1) collect(true);
   return edges;
+}
+
+std::vector<Edge> all_edges(const TriMesh& m) {
+  return edges_where(m, [](const Edge&) { return true; });
+}
+
+// One swap pass: every inner edge once, in the order of all_edges as the pass starts (hull edges
+// never swap), each with the triangle it came from as the hint. The corners are copied first: the
+// swaps rewrite triangles as the pass goes.
+int swap_pass(TriMesh& m) {
+  std::vector<mesh::Triangle> corners(m.triangle_slots());
+  for (int t = 0; t < m.triangle_slots(); ++t) corners[t] = m.triangle(t);
+  int swaps = 0;
+  for (int t = 0; t < static_cast<int>(corners.size()); ++t) {
+    const auto& tri = corners[t];
+    if (tri[0] < 0) continue;
+    for (int i = 0; i < 3; ++i)
+      if (tri[i] < tri[(i + 1) % 3] && mesh::swap_edge(m, tri[i], tri[(i + 1) % 3], 0, t)) ++swaps;
+  }
+  return swaps;
 }
 
 // TetWild's rule: a collapse must not create an edge longer than 4/3 of the target, or the
@@ -71,14 +101,6 @@ bool collapse_keeps_edges_short(const TriMesh& m, int from, int to, const Target
     for (int w : m.triangle(t))
       if (w != from && w != to && (m.point(w) - m.point(to)).norm() > 4.0 / 3.0 * target(to, w)) return false;
   return true;
-}
-
-bool is_edge(const TriMesh& m, int a, int b) {
-  for (int t : m.triangles_of(a)) {
-    const auto& tri = m.triangle(t);
-    if (tri[0] == b || tri[1] == b || tri[2] == b) return true;
-  }
-  return false;
 }
 
 // Lipschitz grading of a per-vertex sizing field over the mesh edges: no vertex asks for more
@@ -133,27 +155,42 @@ std::vector<double> initial_sizes(const TriMesh& m, double target, double factor
   return size;
 }
 
+// The smallest angle of the triangles, in degrees (0 when there is none).
+double min_angle_deg(const TriMesh& m) {
+  double min_angle = std::numbers::pi;
+  for (int t = 0; t < m.triangle_slots(); ++t) {
+    if (!m.alive(t)) continue;
+    const auto& tri = m.triangle(t);
+    min_angle = std::min(min_angle, geometry::min_angle(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])));
+  }
+  return m.triangle_count() ? min_angle * 180 / std::numbers::pi : 0;
+}
+
+// The counts and the energies; no angles, no lengths.
+Quality measure_energies(const TriMesh& m) {
+  Quality q;
+  q.vertices = m.vertex_count();
+  q.triangles = m.triangle_count();
+  double max_e = 0, sum_e = 0;
+  for (int t = 0; t < m.triangle_slots(); ++t) {
+    if (!m.alive(t)) continue;
+    const auto& tri = m.triangle(t);
+    const double e = geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2]));
+    max_e = std::max(max_e, e);
+    sum_e += e;
+  }
+  q.max_amips = max_e;
+  q.mean_amips = q.triangles ? sum_e / q.triangles : 0;
+  return q;
+}
+
 }  // namespace
 
 Quality measure(const TriMesh& m) { return measure(m, true); }
 
 Quality measure(const TriMesh& m, bool mean_edge_length) {
-  Quality q;
-  q.vertices = m.vertex_count();
-  q.triangles = m.triangle_count();
-  double min_angle = std::numbers::pi, max_e = 0, sum_e = 0;
-  for (int t = 0; t < m.triangle_slots(); ++t) {
-    if (!m.alive(t)) continue;
-    const auto& tri = m.triangle(t);
-    const Vec2 &a = m.point(tri[0]), &b = m.point(tri[1]), &c = m.point(tri[2]);
-    min_angle = std::min(min_angle, geometry::min_angle(a, b, c));
-    const double e = geometry::amips(a, b, c);
-    max_e = std::max(max_e, e);
-    sum_e += e;
-  }
-  q.min_angle_deg = q.triangles ? min_angle * 180 / std::numbers::pi : 0;
-  q.max_amips = max_e;
-  q.mean_amips = q.triangles ? sum_e / q.triangles : 0;
+  Quality q = measure_energies(m);
+  q.min_angle_deg = min_angle_deg(m);
   if (!mean_edge_length) return q;
   const auto edges = all_edges(m);
   double sum_l = 0;
@@ -179,8 +216,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
     long changes = 0;  // splits and collapses: the sizing work done in this iteration
     // Split long edges, longest first.
     {
-      auto edges = all_edges(m);
-      std::erase_if(edges, [&](const Edge& e) { return e.length <= 4.0 / 3.0 * edge_target(e.a, e.b); });
+      auto edges = edges_where(m, [&](const Edge& e) { return e.length > 4.0 / 3.0 * edge_target(e.a, e.b); });
       std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.length > y.length; });
       for (const Edge& e : edges) {
         const int v = mesh::split_edge(m, c, e.a, e.b, o.stop_max_amips);
@@ -194,19 +230,33 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
     }
     // Collapse short edges, shortest first; an edge whose ends changed is looked at again later.
     {
-      auto edges = all_edges(m);
-      std::erase_if(edges, [&](const Edge& e) { return e.length >= 0.8 * edge_target(e.a, e.b); });
+      // Which end may move along the edge, by the kinds, is asked once: the kinds stay while the
+      // edge's ends are not touched, and a touched edge is not looked at again. An edge neither
+      // of whose ends may move is not sorted (at 16,000 curves, half the refusals), and a
+      // direction the kinds refuse is not tried.
+      auto edges = edges_where(m, [&](Edge& e) {
+        if (!(e.length < 0.8 * edge_target(e.a, e.b))) return false;
+        e.a_moves = mesh::collapse_allowed_by_kind(m, e.a, e.b);
+        e.b_moves = mesh::collapse_allowed_by_kind(m, e.b, e.a);
+        return e.a_moves || e.b_moves;
+      });
       std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.length < y.length; });
       std::vector<char> touched(m.vertex_count(), 0);
-      // The tests on tags and curves first: they refuse most collapses (at 16,000 curves, every
-      // edge is shorter than the target, and most are on or next to a curve), and cost least.
-      const auto collapse = [&](int from, int to) {
-        return mesh::collapse_allowed_by_tags(m, c, from, to) && collapse_keeps_edges_short(m, from, to, edge_target) &&
-               mesh::collapse_edge(m, c, from, to, o.stop_max_amips);
+      // The length test after the tests on tags and curves: they refuse most collapses (at 16,000
+      // curves, every edge is shorter than the target, and most are on or next to a curve), and
+      // cost least.
+      const mesh::CollapseTest short_enough = [&](int from, int to) {
+        return collapse_keeps_edges_short(m, from, to, edge_target);
       };
+      const auto collapse = [&](int from, int to) {
+        return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough);
+      };
+      // An edge whose ends are untouched is still there: a collapse rewrites only the triangles of
+      // the vertex that goes (those it keeps get the other end instead), so it removes or adds
+      // edges only at its two ends. (collapse_edge refuses a pair that is no edge anyway.)
       for (const Edge& e : edges) {
-        if (touched[e.a] || touched[e.b] || !is_edge(m, e.a, e.b)) continue;
-        if (collapse(e.a, e.b) || collapse(e.b, e.a)) {
+        if (touched[e.a] || touched[e.b]) continue;
+        if ((e.a_moves && collapse(e.a, e.b)) || (e.b_moves && collapse(e.b, e.a))) {
           ++s.collapses, ++changes;
           touched[e.a] = touched[e.b] = 1;
         }
@@ -214,8 +264,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
     }
     // Swap where it lowers the larger energy of the two triangles (an edge an earlier swap
     // removed has no triangle on either side: swap_edge refuses it).
-    for (const Edge& e : all_edges(m))
-      if (mesh::swap_edge(m, e.a, e.b)) ++s.swaps;
+    s.swaps += swap_pass(m);
     // Smooth, project feature vertices onto their curves (Fig. 8), round exact vertices.
     for (int v = 0; v < m.vertex_count(); ++v) {
       if (m.triangles_of(v).empty()) continue;
@@ -250,11 +299,17 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
         if (moved == 0) break;
       }
     }
-    // Secondary chords beside a path of feature edges, in triangles that stay bad: released.
+    // Secondary chords beside a path of feature edges, in triangles that stay bad: released. The
+    // same sweep measures the pass: releasing moves no vertex, and compacting below keeps the
+    // triangles' order, so the energies and their sum are measure_energies' after it.
+    double max_e = 0, sum_e = 0;
     for (int t = 0; t < m.triangle_slots(); ++t) {
       if (!m.alive(t)) continue;
       const auto tri = m.triangle(t);
-      if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) <= o.stop_max_amips) continue;
+      const double e = geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2]));
+      max_e = std::max(max_e, e);
+      sum_e += e;
+      if (e <= o.stop_max_amips) continue;
       for (int i = 0; i < 3; ++i) s.released += mesh::release_secondary_edge(m, c, tri[i], tri[(i + 1) % 3]);
     }
     // Compact: removed elements do not keep their memory.
@@ -264,7 +319,13 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
       if (remap[v] >= 0) resized[remap[v]] = size[v];
     size = std::move(resized);
 
-    const Quality q = measure(m, false);
+    Quality q;
+    q.vertices = m.vertex_count();
+    q.triangles = m.triangle_count();
+    q.max_amips = max_e;
+    q.mean_amips = q.triangles ? sum_e / q.triangles : 0;
+    // The smallest angle matters to the stop rule only while the energy is above the bound.
+    if (o.log || q.max_amips > o.stop_max_amips) q.min_angle_deg = min_angle_deg(m);
     if (o.log)
       *o.log << "optimize: iteration " << s.iterations + 1 << ": " << q.triangles << " triangles, min angle "
              << q.min_angle_deg << ", max AMIPS " << q.max_amips << ", " << changes << " splits and collapses" << "\n";
@@ -352,8 +413,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
       if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) <= o.stop_max_amips) continue;
       for (int i = 0; i < 3; ++i) s.released += mesh::release_secondary_edge(m, c, tri[i], tri[(i + 1) % 3]);
     }
-    for (const Edge& e : all_edges(m))
-      if (mesh::swap_edge(m, e.a, e.b)) ++s.swaps;
+    s.swaps += swap_pass(m);
     m.compact();  // the collapsed vertices (and their exact positions) go
   }
   s.exact_left = m.exact_vertex_count();
