@@ -216,7 +216,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
     long changes = 0;  // splits and collapses: the sizing work done in this iteration
     // Split long edges, longest first.
     {
-      auto edges = edges_where(m, [&](const Edge& e) { return e.length > 4.0 / 3.0 * edge_target(e.a, e.b); });
+      auto edges = edges_where(m, [&](const Edge& e) { return !(e.length <= 4.0 / 3.0 * edge_target(e.a, e.b)); });
       std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.length > y.length; });
       for (const Edge& e : edges) {
         const int v = mesh::split_edge(m, c, e.a, e.b, o.stop_max_amips);
@@ -235,7 +235,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
       // of whose ends may move is not sorted (at 16,000 curves, half the refusals), and a
       // direction the kinds refuse is not tried.
       auto edges = edges_where(m, [&](Edge& e) {
-        if (!(e.length < 0.8 * edge_target(e.a, e.b))) return false;
+        if (e.length >= 0.8 * edge_target(e.a, e.b)) return false;
         e.a_moves = mesh::collapse_allowed_by_kind(m, e.a, e.b);
         e.b_moves = mesh::collapse_allowed_by_kind(m, e.b, e.a);
         return e.a_moves || e.b_moves;
