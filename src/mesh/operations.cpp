@@ -236,10 +236,11 @@ int split_edge(TriMesh& m, const Constraints& c, int a, int b, double energy_bou
   return mid;
 }
 
-bool collapse_allowed_by_kind(const TriMesh& m, int from, int to) {
-  const VertexTag& tag = m.tag(from);
+namespace {
+
+// collapse_allowed_by_kind with the edge's tag looked up already (`edge`, null when untagged).
+bool allowed_by_kind(const VertexTag& tag, const EdgeFeature* edge) {
   if (tag.kind == VertexKind::fixed || tag.isolated) return false;
-  const EdgeFeature* edge = m.feature(from, to);
   switch (tag.kind) {
     case VertexKind::primary:
       return edge && edge->kind == EdgeKind::primary && edge->source == tag.section;
@@ -250,6 +251,12 @@ bool collapse_allowed_by_kind(const TriMesh& m, int from, int to) {
     default:
       return !edge;
   }
+}
+
+}  // namespace
+
+bool collapse_allowed_by_kind(const TriMesh& m, int from, int to) {
+  return allowed_by_kind(m.tag(from), m.feature(from, to));
 }
 
 namespace {
@@ -275,8 +282,8 @@ struct CollapseTags {
 // far a curve edge would turn, which tagged edges may merge. Fills `out` when given; false as soon
 // as a rule refuses.
 bool collapse_tags(const TriMesh& m, const Constraints& c, int from, int to, CollapseTags* out) {
-  if (!collapse_allowed_by_kind(m, from, to)) return false;
   const EdgeFeature* edge = m.feature(from, to);
+  if (!allowed_by_kind(m.tag(from), edge)) return false;
   for (const TaggedEdge& e : m.tagged_edges(from)) {
     const int x = e.other;
     if (x == to) continue;

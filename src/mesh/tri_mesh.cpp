@@ -247,16 +247,20 @@ std::vector<int> TriMesh::compact() {
   for (const auto& tri : triangles_)
     if (tri[0] >= 0) triangles.push_back({remap[tri[0]], remap[tri[1]], remap[tri[2]]});
   // The renumbering keeps the order of vertices (a vertex moves to the same or a lower index):
-  // each list moves down in place, the tagged ones stay sorted, and t_lo stays with the lower end.
+  // each vertex's lists move down in place, the tagged ones stay sorted, and t_lo stays with the
+  // lower end. The incidence lists are refilled below.
   for (int v = 0; v < n; ++v) {
     const int w = remap[v];
     if (w < 0) continue;
     std::vector<TaggedEdge>& list = tagged_[v];
     std::erase_if(list, [&](const TaggedEdge& e) { return remap[e.other] < 0; });
     for (TaggedEdge& e : list) e.other = remap[e.other];
-    if (w != v) tagged_[w] = std::move(list);
+    if (w == v) continue;
+    tagged_[w] = std::move(list);
+    vertex_triangles_[w] = std::move(vertex_triangles_[v]);
   }
   tagged_.resize(next);
+  vertex_triangles_.resize(next);
 
   points_ = std::move(points);
   vertex_tags_ = std::move(tags);
@@ -270,11 +274,6 @@ std::vector<int> TriMesh::compact() {
   std::vector<int> degree(next, 0);
   for (const auto& tri : triangles_)
     for (int v : tri) ++degree[v];
-  for (int v = 0; v < n; ++v) {
-    const int w = remap[v];
-    if (w >= 0 && w != v) vertex_triangles_[w] = std::move(vertex_triangles_[v]);
-  }
-  vertex_triangles_.resize(next);
   for (int v = 0; v < next; ++v) {
     std::vector<int>& list = vertex_triangles_[v];
     const auto size = static_cast<std::size_t>(degree[v]);

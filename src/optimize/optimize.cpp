@@ -166,8 +166,11 @@ double min_angle_deg(const TriMesh& m) {
   return m.triangle_count() ? min_angle * 180 / std::numbers::pi : 0;
 }
 
-// The counts and the energies; no angles, no lengths.
-Quality measure_energies(const TriMesh& m) {
+}  // namespace
+
+Quality measure(const TriMesh& m) { return measure(m, true); }
+
+Quality measure(const TriMesh& m, bool mean_edge_length) {
   Quality q;
   q.vertices = m.vertex_count();
   q.triangles = m.triangle_count();
@@ -181,15 +184,6 @@ Quality measure_energies(const TriMesh& m) {
   }
   q.max_amips = max_e;
   q.mean_amips = q.triangles ? sum_e / q.triangles : 0;
-  return q;
-}
-
-}  // namespace
-
-Quality measure(const TriMesh& m) { return measure(m, true); }
-
-Quality measure(const TriMesh& m, bool mean_edge_length) {
-  Quality q = measure_energies(m);
   q.min_angle_deg = min_angle_deg(m);
   if (!mean_edge_length) return q;
   const auto edges = all_edges(m);
@@ -301,7 +295,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
     }
     // Secondary chords beside a path of feature edges, in triangles that stay bad: released. The
     // same sweep measures the pass: releasing moves no vertex, and compacting below keeps the
-    // triangles' order, so the energies and their sum are measure_energies' after it.
+    // triangles' order, so the energies and their sum are measure's after it.
     double max_e = 0, sum_e = 0;
     for (int t = 0; t < m.triangle_slots(); ++t) {
       if (!m.alive(t)) continue;
