@@ -123,6 +123,7 @@ class Discretizer {
       p.t1 = double(k + 1) / n;
       p.a = k == 0 ? a : a + p.t0 * (b - a);
       p.b = k + 1 == n ? b : a + p.t1 * (b - a);
+      p.leave_a = b - a, p.leave_b = a - b;
       p.unfit = (p.b - p.a).norm() < len_.min_edge;  // shorter than the minimal edge length
       out_.pieces.push_back(p);
     }
@@ -177,6 +178,17 @@ class Discretizer {
     p.t1 = t1;
     p.a = a;
     p.b = b;
+    // The end tangents: towards the first control point apart from the end (a cubic whose first
+    // control points coincide leaves its end towards the next one). Apart means by more than
+    // round-off of the control polygon's size; zero when none is (the chords decide then).
+    const double size = (sub.p[1] - sub.p[0]).norm() + (sub.p[2] - sub.p[1]).norm() + (sub.p[3] - sub.p[2]).norm();
+    const auto leaving = [&](const Vec2& end, const Vec2& q1, const Vec2& q2, const Vec2& q3) {
+      for (const Vec2& q : {q1, q2, q3})
+        if ((q - end).norm() > 1e-9 * size) return Vec2(q - end);
+      return Vec2(Vec2::Zero());
+    };
+    p.leave_a = leaving(sub.p[0], sub.p[1], sub.p[2], sub.p[3]);
+    p.leave_b = leaving(sub.p[3], sub.p[2], sub.p[1], sub.p[0]);
     // A primary edge is at least l_m long (the minimal edge length of the mesh) and turns at most
     // α, so a shorter piece — a whole curve shorter than l_m — or one where the curvature exceeds
     // α / l_m cannot be followed by primary edges (§3.1, bounded curvature).

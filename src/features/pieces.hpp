@@ -11,6 +11,9 @@ struct Piece {
   int section = -1;      // index of its CurveSection
   double t0 = 0, t1 = 1;
   Vec2 a = Vec2::Zero(), b = Vec2::Zero();
+  // The directions in which the curve leaves a (into the piece) and leaves b (back into it): its
+  // end tangents, which a curved edge follows; the chord's directions for a straight curve.
+  Vec2 leave_a = Vec2::Zero(), leave_b = Vec2::Zero();
   bool unfit = false;  // shorter than l_m, curvature above α / l_m, or not resolvable: secondary whatever happens
   double along = 0;         // polyline length of its input curve before it
   Kind kind = Kind::primary;

@@ -9,7 +9,8 @@
 //    pointing in opposite directions), and
 //  - pieces that share an endpoint exactly (a path's corners, shapes that touch at a vertex)
 //    and meet there at an angle of at least the junction angle (default α = 10°), so that a
-//    triangle with minimal angle α fits between them.
+//    triangle with minimal angle α fits between them. Both their chords and their curves (the
+//    end tangents, along which curved edges leave the point) must meet at that angle.
 // Pieces are visited by decreasing length of their curve section (long features first), then
 // along the section; a piece in conflict with an already primary piece becomes secondary.
 #include <CGAL/box_intersection_d.h>
@@ -57,6 +58,12 @@ double angle_between(const Vec2& u, const Vec2& v) {
   return std::atan2(std::abs(cross(u, v)), u.dot(v));
 }
 
+// Whether two curves leaving one point in directions u and v (zero: not known, the chords decide)
+// leave it at less than the junction angle.
+bool leave_at_junction_angle_below(const Vec2& u, const Vec2& v, const Lengths& len) {
+  return u.norm() > 0 && v.norm() > 0 && angle_between(u, v) < len.junction_angle_rad;
+}
+
 }  // namespace
 
 // True when pieces p and q may not both be primary.
@@ -73,28 +80,33 @@ static bool in_conflict(const Discretized& d, int i, int j, const Lengths& len) 
     const Piece& second = i < j ? q : p;
     const double gap = second.along - (first.along + (first.b - first.a).norm());
     if (gap <= 0.5 * std::numbers::pi * len.mu) {
-      if (first.b == second.a) return angle_between(first.a - first.b, second.b - second.a) < len.junction_angle_rad;
+      if (first.b == second.a)
+        return angle_between(first.a - first.b, second.b - second.a) < len.junction_angle_rad ||
+               leave_at_junction_angle_below(first.leave_b, second.leave_a, len);
       return (first.b - first.a).dot(second.b - second.a) <= 0;
     }
   }
   // A shared endpoint: allowed when the pieces leave it at a wide enough angle.
-  const std::array<std::pair<Vec2, Vec2>, 2> p_ends{{{p.a, p.b}, {p.b, p.a}}};  // (end, other end)
-  const std::array<std::pair<Vec2, Vec2>, 2> q_ends{{{q.a, q.b}, {q.b, q.a}}};
-  Vec2 shared = Vec2::Zero(), p_other = Vec2::Zero(), q_other = Vec2::Zero();
+  struct End {
+    Vec2 at, other, leaving;
+  };
+  const std::array<End, 2> p_ends{{{p.a, p.b, p.leave_a}, {p.b, p.a, p.leave_b}}};
+  const std::array<End, 2> q_ends{{{q.a, q.b, q.leave_a}, {q.b, q.a, q.leave_b}}};
+  End p_end, q_end;
   int shared_count = 0;
-  for (const auto& [pe, po] : p_ends)
-    for (const auto& [qe, qo] : q_ends)
-      if (pe == qe) {
-        ++shared_count;
-        shared = pe;
-        p_other = po;
-        q_other = qo;
-      }
+  for (const End& pe : p_ends)
+    for (const End& qe : q_ends)
+      if (pe.at == qe.at) ++shared_count, p_end = pe, q_end = qe;
   if (shared_count == 1) {
-    // Pieces are chords: two chords that share an endpoint meet nowhere else.
-    const Vec2 u = p_other - shared, v = q_other - shared;
+    // Pieces are chords: two chords that share an endpoint meet nowhere else. Both the chords
+    // and the curves must meet at the junction angle: a curved edge leaves the vertex along its
+    // curve's tangent, and two curves leaving at a few degrees while their chords open wider
+    // would leave the triangles between them, each with one curved edge, two wedges of half
+    // that angle at the vertex.
+    const Vec2 u = p_end.other - p_end.at, v = q_end.other - q_end.at;
     if (u.norm() == 0 || v.norm() == 0) return true;
-    return angle_between(u, v) < len.junction_angle_rad;
+    if (angle_between(u, v) < len.junction_angle_rad) return true;
+    return leave_at_junction_angle_below(p_end.leaving, q_end.leaving, len);
   }
   if (shared_count > 1) return true;  // the same chord twice
   return segment_distance(p.a, p.b, q.a, q.b) < len.mu;

@@ -8,6 +8,7 @@
 #include "features/features.hpp"
 #include "geometry/closest_point.hpp"
 #include "pipeline/pipeline.hpp"
+#include "tangent_junction.hpp"
 
 using namespace curvemesh;
 using features::Kind;
@@ -114,6 +115,38 @@ TEST(Features, JunctionRule) {
     if (s.kind != Kind::secondary) continue;
     for (const Vec2& v : s.polyline) EXPECT_LT(v.norm(), 20.0);
   }
+}
+
+namespace {
+
+// The drawing of tangent_junction.hpp as a soup of cubics.
+svg::FeatureSoup tangent_junction(double degrees) {
+  std::vector<CubicBezier> curves;
+  for (const auto& c : testing_support::tangent_junction(degrees)) curves.emplace_back(c[0], c[1], c[2], c[3]);
+  return soup_of(curves);
+}
+
+}  // namespace
+
+TEST(Features, JunctionRuleAppliesToTheCurvesTangents) {
+  const auto f = process(tangent_junction(4));
+  // The polyline edges at (0, 0), whatever their kind, and whether they are primary.
+  std::vector<Vec2> chords;
+  int primary = 0;
+  for (const auto& s : f.sections) {
+    if (s.curve > 1) continue;
+    if (s.polyline.front() == Vec2(0, 0)) chords.push_back(s.polyline[1]), primary += s.kind == Kind::primary;
+    if (s.polyline.back() == Vec2(0, 0)) chords.push_back(s.polyline[s.polyline.size() - 2]), primary += s.kind == Kind::primary;
+  }
+  ASSERT_EQ(chords.size(), 2u);
+  // The chords alone would pass the rule: they meet at more than the junction angle...
+  const Vec2 u = chords[0].normalized(), v = chords[1].normalized();
+  EXPECT_GT(std::acos(std::clamp(u.dot(v), -1.0, 1.0)), f.lengths.junction_angle_rad);
+  // ...but curved edges would leave (0, 0) at 4°: one of the two is secondary there.
+  EXPECT_EQ(primary, 1);
+  // Where the arcs' tangents open wider than the junction angle, both stay primary.
+  const auto wide = process(tangent_junction(12));
+  EXPECT_EQ(count(wide, Kind::secondary), 0);
 }
 
 TEST(Features, CrossingCurvesLoseOnlyTheCrossing) {

@@ -14,6 +14,7 @@
 #include "geometry/p3_triangle.hpp"
 #include "mesh/tri_mesh.hpp"
 #include "pipeline/pipeline.hpp"
+#include "tangent_junction.hpp"
 
 namespace {
 
@@ -119,6 +120,31 @@ TEST(WedgeStats, ATriangleInASharpWedgeIsCountedApart) {
     if (t != sliver) elsewhere = std::max(elsewhere, amips[t]);
   EXPECT_EQ(s.wedges.max_amips_elsewhere, elsewhere);
   EXPECT_LT(s.wedges.max_amips_elsewhere, 20.0);
+}
+
+TEST(WedgeStats, CurvesLeavingAJunctionAtAFewDegreesEndUnder20) {
+  // Two arcs leave (0, 0) at 4° and turn apart; their chords open wider than the junction angle.
+  // Two curved edges leaving there at 4° would need a triangle between them for each (a triangle
+  // has at most one curved edge): two wedges of 2°, whose triangles are at best 33 at that
+  // corner. One of the curves is secondary at the junction instead (a straight edge along its
+  // chord), and the fan around (0, 0) ends within the curved stop energy.
+  for (double degrees : {3.0, 4.0, 6.0}) {
+    SCOPED_TRACE(testing::Message() << degrees << "°");
+    const pipeline::Result r =
+        pipeline::run(pipeline::Source::beziers(curvemesh::testing_support::tangent_junction(degrees), "junction"), {});
+    const curve::Stats& s = r.curve_stats;
+    EXPECT_LE(s.wedges.smallest_wedge_bound, 20.0);
+    double worst = 0;
+    ASSERT_TRUE(r.curved.has_value());
+    for (const auto& ids : r.curved->triangles) {
+      curvemesh::geometry::P3Nodes nodes;
+      for (int i = 0; i < 10; ++i) nodes[i] = r.curved->nodes[ids[i]];
+      worst = std::max(worst, curvemesh::geometry::p3_max_amips(nodes));
+    }
+    EXPECT_EQ(worst, s.max_amips);
+    EXPECT_LE(worst, 20.0);
+    EXPECT_EQ(s.invalid_triangles, 0);
+  }
 }
 
 TEST(WedgeStats, NoSharpWedgeInASquare) {
