@@ -29,7 +29,7 @@ void add_feature_options(CLI::App& cmd, pipeline::Parameters& p) {
       ->check(CLI::Range(0.1, 60.0));
   cmd.add_option(
          "--junction-angle", p.junction_angle_deg,
-         "primary pieces sharing an endpoint stay primary when they meet at least at this angle (deg)")
+         "primary pieces sharing an endpoint stay primary when they meet at least at this angle, both their chords and their curves' tangents there (deg)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 180.0));
   cmd.add_option(
