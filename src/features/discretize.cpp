@@ -178,17 +178,9 @@ class Discretizer {
     p.t1 = t1;
     p.a = a;
     p.b = b;
-    // The end tangents: towards the first control point apart from the end (a cubic whose first
-    // control points coincide leaves its end towards the next one). Apart means by more than
-    // round-off of the control polygon's size; zero when none is (the chords decide then).
-    const double size = (sub.p[1] - sub.p[0]).norm() + (sub.p[2] - sub.p[1]).norm() + (sub.p[3] - sub.p[2]).norm();
-    const auto leaving = [&](const Vec2& end, const Vec2& q1, const Vec2& q2, const Vec2& q3) {
-      for (const Vec2& q : {q1, q2, q3})
-        if ((q - end).norm() > 1e-9 * size) return Vec2(q - end);
-      return Vec2(Vec2::Zero());
-    };
-    p.leave_a = leaving(sub.p[0], sub.p[1], sub.p[2], sub.p[3]);
-    p.leave_b = leaving(sub.p[3], sub.p[2], sub.p[1], sub.p[0]);
+    // The end tangents (their limits from inside where the derivative vanishes).
+    p.leave_a = geometry::unit_tangent(sub, 0.0);
+    p.leave_b = -geometry::unit_tangent(sub, 1.0);
     // A primary edge is at least l_m long (the minimal edge length of the mesh) and turns at most
     // α, so a shorter piece — a whole curve shorter than l_m — or one where the curvature exceeds
     // α / l_m cannot be followed by primary edges (§3.1, bounded curvature).

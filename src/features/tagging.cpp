@@ -58,11 +58,6 @@ double angle_between(const Vec2& u, const Vec2& v) {
   return std::atan2(std::abs(cross(u, v)), u.dot(v));
 }
 
-// Whether two curves leaving one point in directions u and v (zero: not known, the chords decide)
-// leave it at less than the junction angle.
-bool leave_at_junction_angle_below(const Vec2& u, const Vec2& v, const Lengths& len) {
-  return u.norm() > 0 && v.norm() > 0 && angle_between(u, v) < len.junction_angle_rad;
-}
 
 }  // namespace
 
@@ -82,7 +77,7 @@ static bool in_conflict(const Discretized& d, int i, int j, const Lengths& len) 
     if (gap <= 0.5 * std::numbers::pi * len.mu) {
       if (first.b == second.a)
         return angle_between(first.a - first.b, second.b - second.a) < len.junction_angle_rad ||
-               leave_at_junction_angle_below(first.leave_b, second.leave_a, len);
+               angle_between(first.leave_b, second.leave_a) < len.junction_angle_rad;
       return (first.b - first.a).dot(second.b - second.a) <= 0;
     }
   }
@@ -106,7 +101,7 @@ static bool in_conflict(const Discretized& d, int i, int j, const Lengths& len) 
     const Vec2 u = p_end.other - p_end.at, v = q_end.other - q_end.at;
     if (u.norm() == 0 || v.norm() == 0) return true;
     if (angle_between(u, v) < len.junction_angle_rad) return true;
-    return leave_at_junction_angle_below(p_end.leaving, q_end.leaving, len);
+    return angle_between(p_end.leaving, q_end.leaving) < len.junction_angle_rad;
   }
   if (shared_count > 1) return true;  // the same chord twice
   return segment_distance(p.a, p.b, q.a, q.b) < len.mu;

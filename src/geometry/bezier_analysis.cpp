@@ -45,8 +45,7 @@ std::vector<double> sign_changes(double q2, double q1, double q0, double zero) {
   return inside;
 }
 
-// The unit tangent at t. Where c' vanishes (a cusp, coincident control points at an end) the
-// direction is its limit from inside [lo, hi].
+// unit_tangent, for callers that have the control polygon's size already.
 Vec2 tangent(const CubicBezier& c, double t, double lo, double hi, double size) {
   Vec2 d = c.derivative(t);
   const bool look_above = (t - lo) <= (hi - t);
@@ -61,6 +60,10 @@ Vec2 tangent(const CubicBezier& c, double t, double lo, double hi, double size) 
 double angle_between(const Vec2& u, const Vec2& v) { return std::abs(std::atan2(cross(u, v), u.dot(v))); }
 
 }  // namespace
+
+Vec2 unit_tangent(const CubicBezier& c, double t, double lo, double hi) {
+  return tangent(c, t, lo, hi, polygon_size(c));
+}
 
 std::vector<double> inflection_parameters(const CubicBezier& k, double tolerance_rel) {
   const double size = polygon_size(k);

@@ -19,6 +19,11 @@ std::vector<double> inflection_parameters(const CubicBezier& c, double tolerance
 // Where c' vanishes the tangent is its limit from inside the interval.
 double turning_angle(const CubicBezier& c, double t0 = 0.0, double t1 = 1.0);
 
+// The unit tangent c'(t) / |c'(t)|, for t in [lo, hi]. Where c' vanishes (a cusp, coincident
+// control points at an end) the direction is its limit from inside [lo, hi]; (1, 0) for a curve
+// that is a point.
+Vec2 unit_tangent(const CubicBezier& c, double t, double lo = 0.0, double hi = 1.0);
+
 // The angle between the unit tangents at t0 and t1 (same limits where c' vanishes). Equal to the
 // turning over [t0, t1] when the curve has no inflection there and turns by less than π (a
 // section of §4), at the cost of two tangents instead of 33.
