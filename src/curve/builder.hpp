@@ -165,7 +165,7 @@ class Builder {
   void improve();
   int improve_triangle(int t);
   template <class Operation>
-  bool try_operation(const std::vector<int>& before, const Operation& operation);
+  bool try_operation(const std::vector<int>& before, const Operation& operation, const std::vector<int>& settle = {});
   void settle_vertex(int v, const std::vector<int>& triangles);
   bool place_triangle(int t);
 

@@ -1,5 +1,5 @@
 // Step 4 of curve(), the local operations of §4.1 on the curved mesh: for triangles still above
-// the stop energy after smoothing, a swap, a collapse or a split, each tried on the linear mesh
+// the stop energy after smoothing, a swap, a collapse or splits, each tried on the linear mesh
 // under its journal and kept only if the curved triangles it changes get better.
 #include "curve/builder.hpp"
 #include "mesh/operations.hpp"
@@ -19,9 +19,10 @@ std::vector<int> sorted_union(std::vector<int> a, const std::vector<int>& b) {
 }  // namespace
 
 // Passes over the triangles still above the stop energy after smoothing: for each, the swap
-// of one of its edges, else the collapse of one, else the split of one (longer edges first),
-// whichever first lowers the worst energy of the triangles it changes with every changed
-// triangle certified; then a smoothing pass. At most max_smoothing_passes passes.
+// of one of its edges, else the collapse of one, else the split of every edge at a corner
+// where curves meet, else the split of one edge (longer edges first) or two, whichever first
+// lowers the worst energy of the triangles it changes with every changed triangle certified;
+// then a smoothing pass. At most max_smoothing_passes passes.
 void Builder::improve() {
   for (int pass = 0; pass < o_.max_smoothing_passes; ++pass) {
     const std::vector<int> bad = bad_triangles();
@@ -72,14 +73,47 @@ int Builder::improve_triangle(int t) {
         return 1;
       }
     }
-  // Splits: one edge, or two (the triangle's corner between them cut off: a thin corner
-  // between a curve and another feature needs both its sides shortened), the new vertices
-  // moved where their stars are best before the outcome is judged.
   const auto split = [&](int a, int b) {
     const int mid = mesh::split_edge(m, c_, a, b, std::numeric_limits<double>::infinity());
     // A primary vertex left on the chord would leave its curve's edges straight.
     return mid >= 0 && !(m.tag(mid).kind == mesh::VertexKind::primary && !m.tag(mid).on_curve) ? mid : -1;
   };
+  // A fixed vertex where curves meet: every edge there split at once, its free neighbours then
+  // moved. Two curved edges leaving a vertex have at least two triangles between them (a
+  // triangle has one curved edge at most); where the curves bend towards each other, their
+  // sides bulge into those triangles, and no smoothing of a vertex between them undoes it.
+  // Halving the edges at the vertex grades the mesh towards it: the bulge of a curved edge
+  // shrinks like h²κ, and the triangles there approach straight wedges.
+  for (int i = 0; i < 3; ++i) {
+    const int v = tri[i];
+    if (m.tag(v).kind != mesh::VertexKind::fixed) continue;
+    int curves = 0;
+    for (const mesh::TaggedEdge& e : m.tagged_edges(v)) curves += e.feature.kind == EdgeKind::primary;
+    if (curves < 2) continue;
+    const std::vector<int> ends = m.neighbours(v);
+    std::vector<int> movable, before = sorted_union(m.triangles_of(v), {});
+    for (int w : ends)
+      if (m.tag(w).kind == mesh::VertexKind::free) movable.push_back(w), before = sorted_union(before, m.triangles_of(w));
+    if (try_operation(
+            before,
+            [&]() -> std::optional<std::vector<int>> {
+              std::vector<int> made;
+              for (int w : ends) {
+                const int mid = split(v, w);
+                if (mid < 0) return std::nullopt;
+                made = sorted_union(made, m.triangles_of(mid));
+              }
+              for (int w : movable) made = sorted_union(made, m.triangles_of(w));
+              return made;
+            },
+            movable)) {
+      s_.curved_splits += static_cast<int>(ends.size());
+      return 1;
+    }
+  }
+  // Splits: one edge, or two (the triangle's corner between them cut off: a thin corner
+  // between a curve and another feature needs both its sides shortened), the new vertices
+  // moved where their stars are best before the outcome is judged.
   for (const auto& edge : edges) {
     const int a = edge[0], b = edge[1];
     if (try_operation(m.edge_triangles(a, b), [&]() -> std::optional<std::vector<int>> {
@@ -111,13 +145,14 @@ int Builder::improve_triangle(int t) {
 // Tries a local operation of the linear mesh on the curved mesh. `operation` changes
 // out_.linear (under its journal) and returns the triangles it changed or made, or nothing if
 // it refused. Those triangles get their P3 nodes (new edges on their curve where they can
-// follow it, centres chosen as in step 2) and new vertices settle; the operation is kept only
+// follow it, centres chosen as in step 2), new vertices settle, then the vertices `settle`
+// (existing ones whose triangles are among those returned); the operation is kept only
 // if none of them has two primary edges and, compared with `before` (the triangles it
 // replaces), fewer of them are uncertified (validity first: triangles flat to round-off leave
 // a mesh that cannot be written), or all are certified and their worst energy is lower.
 // Otherwise everything is put back.
 template <class Operation>
-bool Builder::try_operation(const std::vector<int>& before, const Operation& operation) {
+bool Builder::try_operation(const std::vector<int>& before, const Operation& operation, const std::vector<int>& settle) {
   TriMesh& m = out_.linear;
   double worst_before = 0;
   int invalid_before = 0;
@@ -150,6 +185,8 @@ bool Builder::try_operation(const std::vector<int>& before, const Operation& ope
     scaled_.resize(m.triangle_slots(), -1.0);
     for (int t : *after) ok = ok && place_triangle(t);
     for (int v = static_cast<int>(vertices0); ok && v < m.vertex_count(); ++v) settle_vertex(v, *after);
+    for (int v : settle)
+      if (ok) settle_vertex(v, *after);
     if (ok) {
       double worst_after = 0;
       int invalid_after = 0;

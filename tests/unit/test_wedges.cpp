@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "curve/curve.hpp"
@@ -142,6 +143,50 @@ TEST(WedgeStats, CurvesLeavingAJunctionAtAFewDegreesEndUnder20) {
       worst = std::max(worst, curvemesh::geometry::p3_max_amips(nodes));
     }
     EXPECT_EQ(worst, s.max_amips);
+    EXPECT_LE(worst, 20.0);
+    EXPECT_EQ(s.invalid_triangles, 0);
+  }
+}
+
+// A heart of four cubics, as playing cards draw it: its two lobes leave the cusp at (0, 0) a
+// few degrees either side of straight up (the first control points `handle` above the cusp,
+// `lean` · `handle` to the side) and at once turn apart, so that the chords of edges at the
+// cusp open much wider than the curves' tangents.
+std::vector<std::array<Vec2, 4>> heart(double handle, double lean) {
+  const std::array<Vec2, 7> right{Vec2(0, 0),   Vec2(lean * handle, -handle), Vec2(6.5, -28), Vec2(31, -20),
+                                  Vec2(62, -4), Vec2(22, 30),                 Vec2(0, 58)};
+  std::array<Vec2, 7> left;
+  for (int i = 0; i < 7; ++i) left[i] = Vec2(-right[i].x(), right[i].y());
+  return {{right[0], right[1], right[2], right[3]},
+          {right[3], right[4], right[5], right[6]},
+          {left[6], left[5], left[4], left[3]},
+          {left[3], left[2], left[1], left[0]}};
+}
+
+TEST(WedgeStats, CurvesTurningApartAtACuspEndUnder20) {
+  // Both curves at the cusp stay primary (their tangents meet at 11° to 14°, above the junction
+  // angle), and their first edges bulge into the triangles between them: without edges graded
+  // towards the cusp, those end at 23 to 31 here. The wedge bound allows less than 20.
+  for (const auto& [handle, lean] : {std::pair{0.5, 0.1}, std::pair{0.6, 0.12}, std::pair{0.75, 0.12}}) {
+    SCOPED_TRACE(testing::Message() << "handle " << handle << ", lean " << lean);
+    const pipeline::Result r = pipeline::run(pipeline::Source::beziers(heart(handle, lean), "heart"), {});
+    ASSERT_TRUE(r.curved.has_value());
+    const curve::CurvedMesh& c = *r.curved;
+    const curve::Stats& s = r.curve_stats;
+    // The premise: two primary curves leave the cusp, at a wedge the bound allows under 20.
+    int primary_at_cusp = 0;
+    for (const curve::FeatureLine& line : c.lines)
+      if (line.kind == curvemesh::mesh::EdgeKind::primary)
+        for (int end : {line.nodes[0], line.nodes[1]}) primary_at_cusp += c.nodes[end].norm() == 0;
+    EXPECT_EQ(primary_at_cusp, 2);
+    EXPECT_GT(s.wedges.smallest_wedge / kDegree, 10);
+    EXPECT_LT(s.wedges.smallest_wedge / kDegree, 15);
+    double worst = 0;
+    for (const auto& ids : c.triangles) {
+      curvemesh::geometry::P3Nodes nodes;
+      for (int i = 0; i < 10; ++i) nodes[i] = c.nodes[ids[i]];
+      worst = std::max(worst, curvemesh::geometry::p3_max_amips(nodes));
+    }
     EXPECT_LE(worst, 20.0);
     EXPECT_EQ(s.invalid_triangles, 0);
   }
