@@ -13,6 +13,9 @@ must be triangle edges, interior nodes included. Then Gmsh (python3-gmsh) and me
 quality analysis (min J / max J over each element, inverse gradient error) must be positive.
 (Gmsh measures planar elements relative to their own normal, so a clockwise triangle looks valid
 to it: orientation is decided by the exact test alone.)
+It also reports the largest energy of the elements as maps (`max_element_amips`: the conformal
+AMIPS energy from the equilateral triangle, for a curved element the largest over the 28
+barycentric points of denominator 6, in floats), for callers that bound the quality.
 
 Usage: msh_check.py FILE.msh [--json]. Exit 0 when valid, 1 when invalid or unreadable.
 """
@@ -361,6 +364,40 @@ def check_curved(etype, points):
     return verdict, splits, scaled
 
 
+# The energy of a curved element: the conformal AMIPS energy of its map, measured from the
+# equilateral triangle (as `amips` below for a straight one), at the 28 points of the barycentric
+# lattice of denominator 6; the largest value, in floats. Infinite where det J ≤ 0.
+_AMIPS_LATTICE = [tuple(Fraction(a, 6) for a in alpha) for alpha in multi_indices(6)]
+_derivative_basis = {}
+
+
+def curved_amips(etype, points):
+    order = CURVED_ORDER[etype]
+    alphas, T, s = bezier_map(order)
+    xy = [(float(x), float(y)) for x, y in points]
+    P = {alpha: (sum(t * x for t, (x, _) in zip(row, xy)) / s, sum(t * y for t, (_, y) in zip(row, xy)) / s)
+         for alpha, row in zip(alphas, T)}  # the Bézier control points
+    m = order - 1
+    if m not in _derivative_basis:
+        _derivative_basis[m] = [[(b, float(bernstein(b, lam))) for b in multi_indices(m)] for lam in _AMIPS_LATTICE]
+    worst = 0.0
+    for row in _derivative_basis[m]:
+        # dx/dξ = order Σ B_β (P_β+e1 − P_β+e0), dx/dη = order Σ B_β (P_β+e2 − P_β+e0).
+        u = [0.0, 0.0]
+        v = [0.0, 0.0]
+        for (b0, b1, b2), w in row:
+            p0, p1, p2 = P[(b0 + 1, b1, b2)], P[(b0, b1 + 1, b2)], P[(b0, b1, b2 + 1)]
+            for i in range(2):
+                u[i] += order * w * (p1[i] - p0[i])
+                v[i] += order * w * (p2[i] - p0[i])
+        det = u[0] * v[1] - u[1] * v[0]
+        if det <= 0:
+            return math.inf
+        f = (2 * v[0] - u[0], 2 * v[1] - u[1])
+        worst = max(worst, (3 * (u[0] ** 2 + u[1] ** 2) + f[0] ** 2 + f[1] ** 2) / (2 * math.sqrt(3) * det))
+    return worst
+
+
 def oriented_edge(a, b, interior):
     """(key, interior node tags) of an edge between corner tags a and b whose interior nodes are
     listed from a to b, both read from the lower corner tag."""
@@ -463,7 +500,9 @@ def check(path, readers=True):
     inverted = degenerate = 0
     seen, duplicates, edges = set(), 0, set()
     min_a, max_e, sum_e = math.pi, 0.0, 0.0
-    for a, b, c in tris:
+    max_straight_e = 0.0  # over the 3-node triangles (the energy of the others is their map's, below)
+    kinds = [etype for etype, _, _ in elements if etype in TRIANGLES]
+    for (a, b, c), kind in zip(tris, kinds):
         (ax, ay), (bx, by), (cx, cy) = nodes[a], nodes[b], nodes[c]
         det = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax)  # exact
         if det < 0:
@@ -478,6 +517,8 @@ def check(path, readers=True):
         fa, fb, fc = ((float(x), float(y)) for x, y in (nodes[a], nodes[b], nodes[c]))
         e = amips(fa, fb, fc)
         max_e, sum_e = max(max_e, e), sum_e + e
+        if kind not in CURVED_ORDER:
+            max_straight_e = max(max_straight_e, e)
         min_a = min(min_a, min_angle(fa, fb, fc))
     # Every edge with its interior nodes read from its lower corner tag: triangles that share an
     # edge must share these nodes too, or the mesh is not conforming (a crack, or an overlap, even
@@ -501,9 +542,10 @@ def check(path, readers=True):
                 not_on_edges += 1
     # Curved triangles: exact positivity of det J on the whole element.
     not_positive = uncertified = subdivided = 0
-    min_scaled = math.inf
+    min_scaled, max_curved_e = math.inf, 0.0
     for etype, en in curved:
         verdict, splits, scaled = check_curved(etype, [nodes[n] for n in en])
+        max_curved_e = max(max_curved_e, curved_amips(etype, [nodes[n] for n in en]))
         not_positive += verdict == "not positive"
         uncertified += verdict == "undecided"
         subdivided += splits > 0
@@ -515,6 +557,7 @@ def check(path, readers=True):
         nodes=len(nodes), triangles=len(tris), edges=len(edges), inverted=inverted, degenerate=degenerate,
         duplicate_triangles=duplicates, unused_nodes=len(nodes) - len(used & nodes.keys()),
         min_angle_deg=math.degrees(min_a) if tris else 0.0, max_amips=max_e,
+        max_element_amips=max(max_curved_e, max_straight_e),
         mean_amips=sum_e / len(tris) if tris else 0.0,
         mean_edge_length=total_length / len(edges) if edges else 0.0, lines=lines,
         lines_not_on_edges=not_on_edges, edges_not_shared=unshared,

@@ -173,6 +173,40 @@ for order, kind in ((3, 21), (2, 9)):
            min_scaled_jacobian=lambda v: v is not None and 0 < v < 0.2)
     curved(f"{P} det J = 0 at a corner", cusp, kind, False, curved_not_positive=1, min_scaled_jacobian=0.0)
 
+# The energy of a curved element, against the derivatives of its map taken by hand: a cubic map
+# (which the 10-node and, for its quadratic part, the 6-node element reproduce exactly), its
+# AMIPS energy from the equilateral triangle at the 28 points (j/6, k/6), the largest.
+def cubic_map(xi, eta, order):
+    x = 2 * xi + 0.5 * eta + 0.3 * xi * eta + (0.2 * xi ** 3 - 0.1 * eta ** 2 * xi if order == 3 else 0)
+    y = 1.7 * eta + 0.2 * xi + 0.25 * xi ** 2 + (0.15 * eta ** 3 if order == 3 else 0)
+    dx = (2 + 0.3 * eta + (0.6 * xi ** 2 - 0.1 * eta ** 2 if order == 3 else 0),
+          0.5 + 0.3 * xi - (0.2 * eta * xi if order == 3 else 0))
+    dy = (0.2 + 0.5 * xi, 1.7 + (0.45 * eta ** 2 if order == 3 else 0))
+    return (x, y), dx, dy
+
+
+for order, kind in ((3, 21), (2, 9)):
+    ref = msh_check.reference_nodes(order)
+    nodes = [msh_check.Fraction(v) for xi, eta in ref for v in cubic_map(float(xi), float(eta), order)[0]]
+    nodes = list(zip(nodes[0::2], nodes[1::2]))
+    by_hand = 0.0
+    for j in range(7):
+        for k in range(7 - j):
+            _, (xu, xv), (yu, yv) = cubic_map(j / 6, k / 6, order)
+            u, v = (xu, yu), (xv, yv)  # the columns of J: d/dξ, d/dη
+            det = u[0] * v[1] - u[1] * v[0]
+            f = (2 * v[0] - u[0], 2 * v[1] - u[1])
+            by_hand = max(by_hand, (3 * (u[0] ** 2 + u[1] ** 2) + f[0] ** 2 + f[1] ** 2) / (2 * math.sqrt(3) * det))
+    got = msh_check.curved_amips(kind, nodes)
+    check(f"P{order}: curved AMIPS is the map's", abs(got - by_hand) < 1e-9 * by_hand, (got, by_hand))
+    rc, r = run(f"amips-P{order}", msh41([(float(x), float(y)) for x, y in nodes], [tuple(range(1, len(nodes) + 1))],
+                                          kind=kind))
+    check(f"P{order}: max_element_amips reported", abs(r.get("max_element_amips", 0) - by_hand) < 1e-6 * by_hand, r)
+# A straight element's energy is its triangle's, curved or not: equilateral 2.
+eq = [(0, 0), (1, 0), (0.5, math.sqrt(3) / 2)]
+rc, r = run("equilateral", msh41(eq, [(1, 2, 3)]))
+check("equilateral: max_element_amips 2", abs(r.get("max_element_amips", 0) - 2) < 1e-12, r)
+
 # The decision itself on polynomials given by their Bernstein coefficients (degree 2):
 # (λ0 − 2λ1)² + λ2 (λ0 + λ1 + λ2), times 2, is ≥ 0 and vanishes only at λ = (2/3, 1/3, 0), which no
 # subdivision corner reaches: undecided at the depth limit (reported as invalid). Lifted by a
