@@ -146,11 +146,11 @@ int Builder::improve_triangle(int t) {
 // out_.linear (under its journal) and returns the triangles it changed or made, or nothing if
 // it refused. Those triangles get their P3 nodes (new edges on their curve where they can
 // follow it, centres chosen as in step 2), new vertices settle, then the vertices `settle`
-// (existing ones whose triangles are among those returned); the operation is kept only
-// if none of them has two primary edges and, compared with `before` (the triangles it
-// replaces), fewer of them are uncertified (validity first: triangles flat to round-off leave
-// a mesh that cannot be written), or all are certified and their worst energy is lower.
-// Otherwise everything is put back.
+// (existing ones, whose triangles must all be in `before` and in those returned); the
+// operation is kept only if none of them has two primary edges and, compared with `before`
+// (the triangles it replaces), fewer of them are uncertified (validity first: triangles flat
+// to round-off leave a mesh that cannot be written), or all are certified and their worst
+// energy is lower. Otherwise everything is put back.
 template <class Operation>
 bool Builder::try_operation(const std::vector<int>& before, const Operation& operation, const std::vector<int>& settle) {
   TriMesh& m = out_.linear;
@@ -171,6 +171,9 @@ bool Builder::try_operation(const std::vector<int>& before, const Operation& ope
     for (int i = 0; i < 3; ++i) old_edges.push_back(mesh::edge_key(tri[i], tri[(i + 1) % 3]));
   }
   const std::size_t nodes0 = out_.nodes.size(), vertices0 = vertex_node_.size(), slots0 = out_.triangles.size();
+  // Vertices in `settle` move existing nodes (their own, their edges'): `before` holds their
+  // triangles, and its nodes go back with the rest.
+  const Snapshot nodes_before = settle.empty() ? Snapshot{} : snapshot(before);
   const int moves0 = s_.smoothing_moves;
   new_edges_.clear();
   m.open_journal();
@@ -209,6 +212,7 @@ bool Builder::try_operation(const std::vector<int>& before, const Operation& ope
     out_.triangles.resize(slots0);
     scaled_.resize(slots0);
     for (const Saved& x : saved) out_.triangles[x.t] = x.ids, scaled_[x.t] = x.scaled;
+    restore(nodes_before);
     s_.smoothing_moves = moves0;
     new_edges_.clear();
     return false;
