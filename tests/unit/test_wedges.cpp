@@ -30,6 +30,22 @@ double isosceles(double angle) {
   return curvemesh::geometry::amips(Vec2(0, 0), Vec2(1, 0), Vec2(std::cos(angle), std::sin(angle)));
 }
 
+// Each element's energy, recomputed from its P3 nodes.
+std::vector<double> element_energies(const curve::CurvedMesh& mesh) {
+  std::vector<double> amips;
+  for (const auto& ids : mesh.triangles) {
+    curvemesh::geometry::P3Nodes nodes;
+    for (int i = 0; i < 10; ++i) nodes[i] = mesh.nodes[ids[i]];
+    amips.push_back(curvemesh::geometry::p3_max_amips(nodes));
+  }
+  return amips;
+}
+
+double worst_energy(const curve::CurvedMesh& mesh) {
+  const std::vector<double> amips = element_energies(mesh);
+  return amips.empty() ? 0.0 : *std::max_element(amips.begin(), amips.end());
+}
+
 TEST(WedgeBound, IsTheBestFanOfIsoscelesTriangles) {
   // The figures the bound is quoted with.
   EXPECT_NEAR(curve::wedge_amips_bound(10 * kDegree), 6.75, 0.01);
@@ -103,12 +119,7 @@ TEST(WedgeStats, ATriangleInASharpWedgeIsCountedApart) {
   EXPECT_GT(s.wedges.smallest_wedge_bound, 30.0);  // 33.1 at 2°
   EXPECT_EQ(s.wedges.sharp_triangles, 1);
   // The sliver is the worst element and at least the bound; the others are measured apart.
-  std::vector<double> amips;
-  for (const auto& ids : out.triangles) {
-    curvemesh::geometry::P3Nodes nodes;
-    for (int i = 0; i < 10; ++i) nodes[i] = out.nodes[ids[i]];
-    amips.push_back(curvemesh::geometry::p3_max_amips(nodes));
-  }
+  const std::vector<double> amips = element_energies(out);
   std::size_t sliver = 0;
   for (std::size_t t = 0; t < out.triangles.size(); ++t)
     if (std::count(out.triangles[t].begin(), out.triangles[t].begin() + 3, p) &&
@@ -135,13 +146,8 @@ TEST(WedgeStats, CurvesLeavingAJunctionAtAFewDegreesEndUnder20) {
         pipeline::run(pipeline::Source::beziers(curvemesh::testing_support::tangent_junction(degrees), "junction"), {});
     const curve::Stats& s = r.curve_stats;
     EXPECT_LE(s.wedges.smallest_wedge_bound, 20.0);
-    double worst = 0;
     ASSERT_TRUE(r.curved.has_value());
-    for (const auto& ids : r.curved->triangles) {
-      curvemesh::geometry::P3Nodes nodes;
-      for (int i = 0; i < 10; ++i) nodes[i] = r.curved->nodes[ids[i]];
-      worst = std::max(worst, curvemesh::geometry::p3_max_amips(nodes));
-    }
+    const double worst = worst_energy(*r.curved);
     EXPECT_EQ(worst, s.max_amips);
     EXPECT_LE(worst, 20.0);
     EXPECT_EQ(s.invalid_triangles, 0);
@@ -181,12 +187,7 @@ TEST(WedgeStats, CurvesTurningApartAtACuspEndUnder20) {
     EXPECT_EQ(primary_at_cusp, 2);
     EXPECT_GT(s.wedges.smallest_wedge / kDegree, 10);
     EXPECT_LT(s.wedges.smallest_wedge / kDegree, 15);
-    double worst = 0;
-    for (const auto& ids : c.triangles) {
-      curvemesh::geometry::P3Nodes nodes;
-      for (int i = 0; i < 10; ++i) nodes[i] = c.nodes[ids[i]];
-      worst = std::max(worst, curvemesh::geometry::p3_max_amips(nodes));
-    }
+    const double worst = worst_energy(c);
     EXPECT_LE(worst, 20.0);
     EXPECT_EQ(s.invalid_triangles, 0);
     // The corners of the curved mesh are the linear mesh's vertices, where the operations tried
