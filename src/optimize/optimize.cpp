@@ -8,6 +8,7 @@
 #include <queue>
 
 #include "geometry/amips.hpp"
+#include "geometry/p3_triangle.hpp"
 #include "mesh/operations.hpp"
 
 namespace curvemesh::optimize {
@@ -191,6 +192,114 @@ Quality measure(const TriMesh& m, bool mean_edge_length) {
   for (const Edge& e : edges) sum_l += e.length;
   q.mean_edge_length = edges.empty() ? 0 : sum_l / static_cast<double>(edges.size());
   return q;
+}
+
+namespace {
+
+// The energy triangle t would have once curved, as the curve stage first makes it: its primary
+// edge on the curve (nodes at the thirds of its parameter interval), the best of the stage's
+// three centres. 0 for a triangle with no primary edge, or more than one (the curve stage splits
+// it), or one with an end off its curve (the stage leaves that edge straight): the linear energy
+// judges those.
+double curved_energy(const TriMesh& m, const mesh::Constraints& c, int t) {
+  const mesh::Triangle& tri = m.triangle(t);
+  int curved = -1;
+  for (int i = 0; i < 3; ++i) {
+    const mesh::EdgeFeature* f = m.feature(tri[i], tri[(i + 1) % 3]);
+    if (!f || f->kind != mesh::EdgeKind::primary) continue;
+    if (curved >= 0) return 0;
+    curved = i;
+  }
+  if (curved < 0) return 0;
+  const int a = tri[curved], b = tri[(curved + 1) % 3];
+  for (int v : {a, b})
+    if (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) return 0;
+  const mesh::EdgeFeature& f = *m.feature(a, b);
+  const double ta = a < b ? f.t_lo : f.t_hi, tb = a < b ? f.t_hi : f.t_lo;
+  // The corners turned so that the curved edge is the first (nodes 3 and 4).
+  geometry::P3Nodes p = geometry::p3_straight_nodes(m.point(a), m.point(b), m.point(tri[(curved + 2) % 3]));
+  const mesh::SectionCurve& s = c.sections[f.source];
+  p[3] = s.eval(ta + (tb - ta) / 3);
+  p[4] = s.eval(ta + 2 * (tb - ta) / 3);
+  const Vec2 corners = p[0] + p[1] + p[2];
+  Vec2 edges = Vec2::Zero();
+  for (int i = 3; i < 9; ++i) edges += p[i];
+  double best = std::numeric_limits<double>::infinity();
+  for (const Vec2& centre : {Vec2(edges / 4 - corners / 6), Vec2((corners + edges) / 9), Vec2(corners / 3)}) {
+    p[9] = centre;
+    best = std::min(best, geometry::p3_max_amips(p, best));
+  }
+  return best;
+}
+
+}  // namespace
+
+// The sizing field (small near features, halved where quality stalled) asked for more vertices
+// than quality needs in the end: the loop refines where it must, and what it refined stays. Each
+// round tries every short edge again, against the target length alone; rounds go on while they
+// remove more than 0.5 % of the triangles. A collapse changes only its own star, so one round
+// touches each vertex once (as in the loop).
+void coarsen(TriMesh& m, const mesh::Constraints& c, const Options& o, Stats& s) {
+  s.before_coarsening = m.triangle_count();
+  const double target = o.edge_length;
+  const auto edge_target = [&](int, int) { return target; };
+  for (int round = 0; round < o.coarsening_rounds; ++round) {
+    auto edges = edges_where(m, [&](Edge& e) {
+      if (e.length >= 0.8 * target) return false;
+      e.a_moves = mesh::collapse_allowed_by_kind(m, e.a, e.b);
+      e.b_moves = mesh::collapse_allowed_by_kind(m, e.b, e.a);
+      return e.a_moves || e.b_moves;
+    });
+    std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.length < y.length; });
+    std::vector<char> touched(m.vertex_count(), 0);
+    const mesh::CollapseTest short_enough = [&](int from, int to) {
+      return collapse_keeps_edges_short(m, from, to, edge_target);
+    };
+    const auto star_curved = [&](int v) {
+      double worst = 0;
+      for (int t : m.triangles_of(v)) worst = std::max(worst, curved_energy(m, c, t));
+      return worst;
+    };
+    long collapsed = 0;
+    for (const Edge& e : edges) {
+      if (touched[e.a] || touched[e.b]) continue;
+      // A collapse that leaves a triangle whose curved form (curved_energy) is above the curved
+      // stop energy, and above the worst it replaces, is taken back: a coarser mesh beside a
+      // curve leaves the curved edge's bulge less room, and the curve stage cannot always undo it.
+      const auto collapse = [&](int from, int to) {
+        if (!(o.curved_stop_amips > 0)) return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough);
+        m.open_journal();
+        if (!mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough)) {
+          m.commit();
+          return false;
+        }
+        const double after = star_curved(to);
+        if (after <= o.curved_stop_amips) {
+          m.commit();
+          return true;
+        }
+        m.rollback();
+        if (after > std::max(star_curved(from), star_curved(to))) return false;
+        return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough);  // as before
+      };
+      if ((e.a_moves && collapse(e.a, e.b)) || (e.b_moves && collapse(e.b, e.a))) {
+        ++collapsed;
+        touched[e.a] = touched[e.b] = 1;
+      }
+    }
+    s.coarsening_collapses += collapsed;
+    s.swaps += swap_pass(m);
+    for (int v = 0; v < m.vertex_count(); ++v)
+      if (!m.triangles_of(v).empty() && !m.has_exact(v) &&
+          !(m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) && mesh::smooth_vertex(m, c, v))
+        ++s.smooths;
+    m.compact();
+    ++s.coarsening_rounds;
+    if (o.log)
+      *o.log << "optimize: coarsening round " << round + 1 << ": " << m.triangle_count() << " triangles, "
+             << collapsed << " collapses\n";
+    if (200 * collapsed <= m.triangle_count()) break;
+  }
 }
 
 Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
@@ -410,6 +519,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
     s.swaps += swap_pass(m);
     m.compact();  // the collapsed vertices (and their exact positions) go
   }
+  if (o.coarsen) coarsen(m, c, o, s);
   s.exact_left = m.exact_vertex_count();
   for (int v = 0; v < m.vertex_count(); ++v)
     if (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) ++s.unprojected;

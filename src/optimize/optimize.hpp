@@ -24,6 +24,13 @@ struct Options {
   double gradation = 1.0;
   // Smoothing rounds, after each pass, on the vertices of the triangles still above stop_max_amips.
   int extra_smoothing_rounds = 10;
+  // Coarsening after the loop: collapses against the target length alone, at most this many rounds.
+  bool coarsen = true;
+  int coarsening_rounds = 8;
+  // When positive (the curved pipeline's stop energy), coarsening also refuses a collapse that
+  // leaves a triangle whose curved form, as the curve stage first makes it, is above this and
+  // above the worst it replaces.
+  double curved_stop_amips = 0;
   std::ostream* log = nullptr;           // one line per iteration when set (--verbose)
   // Called after each iteration with its number (from 1), the triangles and the worst AMIPS energy.
   std::function<void(int iteration, int triangles, double max_amips)> on_iteration;
@@ -37,6 +44,9 @@ struct Quality {
 struct Stats {
   int iterations = 0;
   long splits = 0, collapses = 0, swaps = 0, smooths = 0, projections = 0;
+  long coarsening_collapses = 0;  // collapses in coarsening (not in `collapses`)
+  int coarsening_rounds = 0;
+  int before_coarsening = 0;  // triangles
   long released = 0;    // secondary edges whose tag was dropped (mesh::release_secondary_edge)
   int unprojected = 0;  // primary vertices still off their curve at the end
   int exact_left = 0;   // vertices that could not be rounded to doubles (0 in a writable mesh)
@@ -49,6 +59,14 @@ struct Stats {
 Quality measure(const mesh::TriMesh& mesh);
 // The same without the mean edge length (which needs every edge): what each iteration looks at.
 Quality measure(const mesh::TriMesh& mesh, bool mean_edge_length);
+
+// Coarsening, the last step of optimize (when options.coarsen): rounds of collapses of the edges
+// shorter than 0.8 · edge_length, shortest first, judged against the target length alone (no new
+// edge longer than 4/3 of it) rather than the sizing field the loop refined, each kept only under
+// every invariant and with no new triangle above max(stop_max_amips, the worst it replaces) (nor,
+// with curved_stop_amips, beside a curve above it once curved); then a swap and a smoothing pass.
+// Adds to stats.
+void coarsen(mesh::TriMesh& mesh, const mesh::Constraints& constraints, const Options& options, Stats& stats);
 
 // Improves `mesh` in place.
 Stats optimize(mesh::TriMesh& mesh, const mesh::Constraints& constraints, const Options& options);

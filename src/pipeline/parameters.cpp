@@ -75,6 +75,7 @@ Resolved resolve(const Parameters& p, double diagonal) {
   r.optimize.max_iterations = p.max_iterations;
   r.optimize.stop_min_angle_deg = p.alpha_deg;  // the target min angle is α
   r.optimize.stop_max_amips = p.stop_amips;
+  r.optimize.curved_stop_amips = p.linear ? 0.0 : p.curved_stop_amips;
   r.curve.stop_amips = p.curved_stop_amips;
   r.curve.max_smoothing_passes = p.max_curved_passes;
   return r;
