@@ -78,6 +78,20 @@ std::vector<Edge> all_edges(const TriMesh& m) {
   return edges_where(m, [](const Edge&) { return true; });
 }
 
+// The edges shorter than 4/5 of target(a, b) that the kinds let collapse one way or the other
+// (which ends may move filled in), shortest first, in triangle order among equals.
+template <class Target>
+std::vector<Edge> collapse_candidates(const TriMesh& m, const Target& target) {
+  auto edges = edges_where(m, [&](Edge& e) {
+    if (e.length >= 0.8 * target(e.a, e.b)) return false;
+    e.a_moves = mesh::collapse_allowed_by_kind(m, e.a, e.b);
+    e.b_moves = mesh::collapse_allowed_by_kind(m, e.b, e.a);
+    return e.a_moves || e.b_moves;
+  });
+  std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.length < y.length; });
+  return edges;
+}
+
 // One swap pass: every inner edge once, in the order of all_edges as the pass starts (hull edges
 // never swap), each with the triangle it came from as the hint. The corners are copied first: the
 // swaps rewrite triangles as the pass goes.
@@ -244,13 +258,7 @@ void coarsen(TriMesh& m, const mesh::Constraints& c, const Options& o, Stats& s)
   const double target = o.edge_length;
   const auto edge_target = [&](int, int) { return target; };
   for (int round = 0; round < o.coarsening_rounds; ++round) {
-    auto edges = edges_where(m, [&](Edge& e) {
-      if (e.length >= 0.8 * target) return false;
-      e.a_moves = mesh::collapse_allowed_by_kind(m, e.a, e.b);
-      e.b_moves = mesh::collapse_allowed_by_kind(m, e.b, e.a);
-      return e.a_moves || e.b_moves;
-    });
-    std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.length < y.length; });
+    const std::vector<Edge> edges = collapse_candidates(m, edge_target);
     std::vector<char> touched(m.vertex_count(), 0);
     const mesh::CollapseTest short_enough = [&](int from, int to) {
       return collapse_keeps_edges_short(m, from, to, edge_target);
@@ -337,13 +345,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
       // edge's ends are not touched, and a touched edge is not looked at again. An edge neither
       // of whose ends may move is not sorted (at 16,000 curves, half the refusals), and a
       // direction the kinds refuse is not tried.
-      auto edges = edges_where(m, [&](Edge& e) {
-        if (e.length >= 0.8 * edge_target(e.a, e.b)) return false;
-        e.a_moves = mesh::collapse_allowed_by_kind(m, e.a, e.b);
-        e.b_moves = mesh::collapse_allowed_by_kind(m, e.b, e.a);
-        return e.a_moves || e.b_moves;
-      });
-      std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.length < y.length; });
+      const std::vector<Edge> edges = collapse_candidates(m, edge_target);
       std::vector<char> touched(m.vertex_count(), 0);
       // The length test after the tests on tags and curves: they refuse most collapses (at 16,000
       // curves, every edge is shorter than the target, and most are on or next to a curve), and
