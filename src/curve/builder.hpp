@@ -80,7 +80,6 @@ class Builder {
   std::pair<int, int> edge_nodes(int a, int b) const;
   int curved_edge_of(const mesh::Triangle& tri) const;
   geometry::P3Nodes element(const mesh::Triangle& tri) const;
-  static std::array<Vec2, 3> centre_candidates(const geometry::P3Nodes& p);
   bool choose_centre(geometry::P3Nodes& p, int& choice, double& scaled) const;
   double badness(int t) const;
   void choose_centre_of(int t);

@@ -87,22 +87,13 @@ geometry::P3Nodes Builder::element(const mesh::Triangle& tri) const {
   return p;
 }
 
-// The centre that reproduces quadratic maps exactly first: with it the map's cubic part is as
-// small as the edges allow, which finite elements on the mesh need for their full order (with
-// the paper's centre, the average of the other nine nodes, P2 on a disk converges at L2 rate
-// 2.65 instead of 3; fem/convergence.hpp). Where that map is not certified, the paper's centre,
-// then the corners' centroid.
-std::array<Vec2, 3> Builder::centre_candidates(const geometry::P3Nodes& p) {
-  const Vec2 sum_corners = p[0] + p[1] + p[2];
-  Vec2 sum_edges = Vec2::Zero();
-  for (int i = 3; i < 9; ++i) sum_edges += p[i];
-  return {sum_edges / 4 - sum_corners / 6, (sum_corners + sum_edges) / 9, sum_corners / 3};
-}
-
-// Sets p[9] to the first certified centre candidate (its index in `choice`, its scaled Jacobian
-// in `scaled`) and returns true, or returns false.
+// Sets p[9] to the first certified centre candidate (geometry::p3_centre_candidates; its index in
+// `choice`, its scaled Jacobian in `scaled`) and returns true, or returns false. The candidate that
+// reproduces quadratic maps exactly comes first: finite elements on the mesh need it for their
+// full order (with the paper's centre, P2 on a disk converges at L2 rate 2.65 instead of 3;
+// fem/convergence.hpp).
 bool Builder::choose_centre(geometry::P3Nodes& p, int& choice, double& scaled) const {
-  const std::array<Vec2, 3> centres = centre_candidates(p);
+  const std::array<Vec2, 3> centres = geometry::p3_centre_candidates(p);
   for (int k = 0; k < 3; ++k) {
     p[9] = centres[k];
     geometry::JacobianCheckOptions check;
@@ -134,7 +125,7 @@ void Builder::choose_centre_of(int t) {
   geometry::P3Nodes q = nodes_of(t);
   Vec2& centre = out_.nodes[out_.triangles[t][9]];
   double best = std::numeric_limits<double>::infinity();
-  for (const Vec2& c : centre_candidates(q)) {
+  for (const Vec2& c : geometry::p3_centre_candidates(q)) {
     const Vec2 keep = centre;
     centre = c;
     if (const double b = badness(t); b < best) best = b;

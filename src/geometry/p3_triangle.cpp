@@ -19,6 +19,13 @@ P3Nodes p3_straight_nodes(const Vec2& a, const Vec2& b, const Vec2& c) {
           third(b, c), third(c, b), third(c, a), third(a, c), (a + b + c) / 3};
 }
 
+std::array<Vec2, 3> p3_centre_candidates(const P3Nodes& p) {
+  const Vec2 sum_corners = p[0] + p[1] + p[2];
+  Vec2 sum_edges = Vec2::Zero();
+  for (int i = 3; i < 9; ++i) sum_edges += p[i];
+  return {sum_edges / 4 - sum_corners / 6, (sum_corners + sum_edges) / 9, sum_corners / 3};
+}
+
 P3NodesT<mpq_class> to_exact(const P3Nodes& nodes) {
   P3NodesT<mpq_class> out;
   for (int i = 0; i < 10; ++i) out[i] = {mpq_class(nodes[i].x()), mpq_class(nodes[i].y())};

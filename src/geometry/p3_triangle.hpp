@@ -51,6 +51,12 @@ Vec2 p3_reference_node(int i);
 // Nodes of the straight triangle a, b, c: edge nodes at thirds, centre at the centroid.
 P3Nodes p3_straight_nodes(const Vec2& a, const Vec2& b, const Vec2& c);
 
+// Centres for the corner and edge nodes of `nodes` (its centre is not read), in the order the
+// curve stage tries them: the one that reproduces quadratic maps exactly (the map's cubic part as
+// small as the edges allow), the paper's (the average of the other nine nodes), the corners'
+// centroid.
+std::array<Vec2, 3> p3_centre_candidates(const P3Nodes& nodes);
+
 // The map x(u, v) = Σ ℓ_i(u, v) node_i and its Jacobian [∂x/∂u ∂x/∂v] at a reference point.
 Vec2 p3_map(const P3Nodes& nodes, double u, double v);
 Eigen::Matrix2d p3_jacobian(const P3Nodes& nodes, double u, double v);

@@ -235,11 +235,8 @@ double curved_energy(const TriMesh& m, const mesh::Constraints& c, int t) {
   const mesh::SectionCurve& s = c.sections[f.source];
   p[3] = s.eval(ta + (tb - ta) / 3);
   p[4] = s.eval(ta + 2 * (tb - ta) / 3);
-  const Vec2 corners = p[0] + p[1] + p[2];
-  Vec2 edges = Vec2::Zero();
-  for (int i = 3; i < 9; ++i) edges += p[i];
   double best = std::numeric_limits<double>::infinity();
-  for (const Vec2& centre : {Vec2(edges / 4 - corners / 6), Vec2((corners + edges) / 9), Vec2(corners / 3)}) {
+  for (const Vec2& centre : geometry::p3_centre_candidates(p)) {
     p[9] = centre;
     best = std::min(best, geometry::p3_max_amips(p, best));
   }
