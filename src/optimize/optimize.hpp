@@ -61,11 +61,11 @@ Quality measure(const mesh::TriMesh& mesh);
 Quality measure(const mesh::TriMesh& mesh, bool mean_edge_length);
 
 // Coarsening, the last step of optimize (when options.coarsen): rounds of collapses of the edges
-// shorter than 0.8 · edge_length, shortest first, judged against the target length alone (no new
-// edge longer than 4/3 of it) rather than the sizing field the loop refined, each kept only under
-// every invariant and with no new triangle above max(stop_max_amips, the worst it replaces) (nor,
-// with curved_stop_amips, beside a curve above it once curved); then a swap and a smoothing pass.
-// Adds to stats.
+// shorter than edge_length, shortest first, judged against the target length alone (no new edge
+// longer than 5/3 of it) rather than the sizing field the loop refined, each kept only under every
+// invariant and with no new triangle above max(stop_max_amips, the worst it replaces) (nor, with
+// curved_stop_amips, beside a curve above it once curved); then a swap pass, and smoothing where
+// the collapses and swaps changed the mesh. Adds to stats.
 void coarsen(mesh::TriMesh& mesh, const mesh::Constraints& constraints, const Options& options, Stats& stats);
 
 // Improves `mesh` in place.
