@@ -25,7 +25,8 @@ struct CURVEMESH_API Parameters {
   // §4.1: the meshed box and the linear optimization's stop.
   double box_margin_rel = 0.05;  // --box-margin: the box grows the drawing's bounds by this on every side
   int max_iterations = 80;       // --max-iterations: optimization passes at most
-  double stop_amips = 10.0;      // --stop-amips: ... or once every triangle's AMIPS energy is at most this
+  double stop_amips = 10.0;      // --stop-amips: ... or once every triangle's AMIPS energy is at most this;
+                                 // also the bound of both coarsenings (linear, and along the curves)
   // §4.2: curving.
   bool linear = false;  // --linear: straight 3-node triangles instead of cubic 10-node ones
   double curved_stop_amips =

@@ -53,7 +53,9 @@ std::vector<const CLI::Option*> add_mesh_options(CLI::App& cmd, pipeline::Parame
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   cmd.add_option("--stop-amips", p.stop_amips,
-                 "optimization stops once every triangle's AMIPS energy is at most this (2 = equilateral)")
+                 "optimization stops once every triangle's AMIPS energy is at most this (2 = equilateral); "
+                 "coarsening, of the linear mesh and along the curves, keeps what it changes at most this or "
+                 "its worst before")
       ->capture_default_str()
       ->check(CLI::Range(2.0, 1e9));
   cmd.add_option("--box-margin", p.box_margin_rel,

@@ -7,7 +7,8 @@
 //   nodes.cpp            steps 2 and 3: the P3 nodes of edges and centres, certification,
 //                        straightening;
 //   smooth.cpp           step 4: smoothing of corners and centres, projection onto curves;
-//   local_operations.cpp step 4: swaps, collapses and splits on the curved mesh;
+//   local_operations.cpp step 4: swaps, collapses and splits on the curved mesh; step 6:
+//                        coarsening along the curves;
 //   fit.cpp              step 5: edges that could not follow their curve, the distances left.
 #include <algorithm>
 #include <array>
@@ -40,13 +41,13 @@ int split_until_one_primary_edge(TriMesh& m, const mesh::Constraints& c);
 // Whether the edge can follow its curve: both ends lie on it at their recorded parameters.
 bool followable(const TriMesh& m, int a, int b);
 
-// Steps 2 to 5 on the linear mesh after step 1 (out.linear, compacted).
+// Steps 2 to 6 on the linear mesh after step 1 (out.linear, compacted).
 class Builder {
  public:
   Builder(CurvedMesh& out, const mesh::Constraints& c, const Options& o, Stats& s)
       : out_(out), c_(c), o_(o), s_(s) {}
 
-  // Steps 2 to 5 and the statistics; out.nodes, out.triangles and out.lines are filled.
+  // Steps 2 to 6 and the statistics; out.nodes, out.triangles and out.lines are filled.
   void run();
 
  private:
@@ -164,7 +165,9 @@ class Builder {
   void improve();
   int improve_triangle(int t);
   template <class Operation>
-  bool try_operation(const std::vector<int>& before, const Operation& operation, const std::vector<int>& settle = {});
+  bool try_operation(const std::vector<int>& before, const Operation& operation, const std::vector<int>& settle = {},
+                     double accept_up_to = 0);
+  void coarsen();
   void settle_vertex(int v, const std::vector<int>& triangles);
   bool place_triangle(int t);
 

@@ -74,6 +74,7 @@ void Builder::run() {
     if (f.kind == EdgeKind::primary && !curved_.at(mesh::edge_key(edge[0], edge[1])) && followable(m, edge[0], edge[1]))
       fit(edge[0], edge[1]);
   improve();
+  coarsen();
   finish();
   std::vector<double> amips(out_.triangles.size());
   for (std::size_t t = 0; t < out_.triangles.size(); ++t) {

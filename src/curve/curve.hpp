@@ -27,6 +27,12 @@
 //     that, it is fitted: bent towards the curve as far as its triangles stay certified and within
 //     the stop energy. The distance left from every fitted or straight edge to its curve is
 //     recorded.
+//  6. Coarsening along the curves: invariant 3 (α per primary edge) is no longer needed once the
+//     triangles are curved and certified (§4.2, Curved Mesh Optimization), so primary edges
+//     shorter than l are collapsed along their curve, the merged edge covering any interval of
+//     its section, where every changed triangle is certified, every new primary edge follows
+//     its curve, no new edge is longer than 5/3 l and the worst energy of what changed is at
+//     most max(Options::coarsen_amips, the worst it replaces).
 // High-order nodes are shared: one per edge position, one centre per triangle.
 #include <array>
 #include <functional>
@@ -48,6 +54,12 @@ struct Options {
   // pipeline::Parameters.
   double stop_amips = 0;
   int max_smoothing_passes = 0;
+  // Step 6: primary edges shorter than coarsen_edge_length are collapsed along their curve where
+  // the triangles they change stay certified and at most max(coarsen_amips, the worst they
+  // replace); 0 leaves the mesh as step 5 made it. Both from pipeline::Parameters (l, and the
+  // linear stop energy).
+  double coarsen_edge_length = 0;
+  double coarsen_amips = 0;
   // Called at the start of each smoothing pass of step 4 (also those between the operations)
   // with the number of triangles above stop_amips and the worst energy among them.
   std::function<void(int above, double max_amips)> on_pass;
@@ -78,6 +90,7 @@ struct Stats {
   double max_amips_before_smoothing = 0;  // the same before step 4
   int smoothing_moves = 0;                // corner and centre moves step 4 kept
   int curved_splits = 0, curved_collapses = 0, curved_swaps = 0;  // operations step 4 kept
+  int coarsening_collapses = 0;                                    // collapses step 6 kept
   int late_projections = 0;               // primary vertices brought onto their curve only now
   WedgeStats wedges;                      // the sharp wedges at fixed vertices, and the rest
   double seconds = 0;

@@ -152,7 +152,8 @@ int Builder::improve_triangle(int t) {
 // to round-off leave a mesh that cannot be written), or all are certified and their worst
 // energy is lower. Otherwise everything is put back.
 template <class Operation>
-bool Builder::try_operation(const std::vector<int>& before, const Operation& operation, const std::vector<int>& settle) {
+bool Builder::try_operation(const std::vector<int>& before, const Operation& operation, const std::vector<int>& settle,
+                            double accept_up_to) {
   TriMesh& m = out_.linear;
   double worst_before = 0;
   int invalid_before = 0;
@@ -191,17 +192,28 @@ bool Builder::try_operation(const std::vector<int>& before, const Operation& ope
     for (int v : settle)
       if (ok) settle_vertex(v, *after);
     if (ok) {
+      // The energies first: where nothing before was uncertified, a triangle above both the worst
+      // before and accept_up_to refuses the operation, and no certificate need be made.
       double worst_after = 0;
-      int invalid_after = 0;
-      std::vector<std::optional<double>> certified;
       for (int t : *after) {
         worst_after = std::max(worst_after, energy(t));
-        certified.push_back(certify(t));
-        invalid_after += !certified.back();
+        if (invalid_before == 0 && worst_after >= worst_before && worst_after > accept_up_to) {
+          ok = false;
+          break;
+        }
       }
-      ok = invalid_after < invalid_before || (invalid_after == 0 && worst_after < worst_before);
-      if (ok)
-        for (std::size_t k = 0; k < after->size(); ++k) scaled_[(*after)[k]] = certified[k].value_or(-1.0);
+      if (ok) {
+        int invalid_after = 0;
+        std::vector<std::optional<double>> certified;
+        for (int t : *after) {
+          certified.push_back(certify(t));
+          invalid_after += !certified.back();
+        }
+        ok = invalid_after < invalid_before ||
+             (invalid_after == 0 && (worst_after < worst_before || worst_after <= accept_up_to));
+        if (ok)
+          for (std::size_t k = 0; k < after->size(); ++k) scaled_[(*after)[k]] = certified[k].value_or(-1.0);
+      }
     }
   }
   if (!ok) {
@@ -246,6 +258,85 @@ bool Builder::place_triangle(int t) {
   out_.triangles[t] = ids;
   if (curved_edge_of(tri) >= 0) choose_centre_of(t);
   return true;
+}
+
+// Step 6: coarsening along the curves. Invariant 3 (a primary edge turns at most α) is what lets
+// the linear mesh be curved at all (Theorem 3.4); once the triangles are curved and certified it
+// is not needed any more (§4.2, Curved Mesh Optimization), and it is what keeps a curve's edges
+// short where the curve bends: a circle of any size gets 36 edges. So here a primary edge may
+// cover any interval of its section (no inflection, turning below π: the cubic through its nodes
+// is the curve's own piece). In rounds, the primary edges shorter than l, shortest first, are
+// collapsed along their curve when every triangle the collapse changes is certified, no new
+// edge is longer than 5/3 of l (the linear coarsening's bound) and their worst energy is at most
+// max(coarsen_amips, the worst they replace). Fitted and straight edges stay as they are.
+void Builder::coarsen() {
+  const double l = o_.coarsen_edge_length;
+  if (!(l > 0)) return;
+  TriMesh& m = out_.linear;
+  mesh::Constraints relaxed = c_;
+  relaxed.max_turning = std::max(c_.max_turning, std::numbers::pi);
+  const double longest2 = (5.0 / 3.0 * l) * (5.0 / 3.0 * l);
+  const auto short_new_edges = [&](int from, int to) {
+    for (int w : m.neighbours(from))
+      if (w != to && (m.point(w) - m.point(to)).squaredNorm() > longest2) return false;
+    return true;
+  };
+  const auto curved = [&](int a, int b) {
+    const auto it = curved_.find(mesh::edge_key(a, b));
+    return it != curved_.end() && it->second;
+  };
+  // After the first round only edges at a vertex whose star the last round changed: a collapse
+  // reads the star of the vertex it removes alone, so one refused on unchanged stars is refused
+  // again.
+  std::vector<char> changed(m.vertex_count(), 1);
+  for (;;) {
+    std::vector<std::pair<double, std::array<int, 2>>> edges;
+    for (const auto& [edge, f] : m.sorted_features()) {
+      const int a = edge[0], b = edge[1];
+      if (f.kind != EdgeKind::primary || !curved(a, b) || !(changed[a] || changed[b])) continue;
+      if (const double len = (m.point(a) - m.point(b)).squaredNorm(); len < l * l) edges.push_back({len, {a, b}});
+    }
+    std::sort(edges.begin(), edges.end());
+    std::fill(changed.begin(), changed.end(), 0);
+    int made = 0;
+    for (const auto& [len, e] : edges)
+      for (const auto& ends : {std::pair{e[0], e[1]}, std::pair{e[1], e[0]}}) {
+        const int from = ends.first, to = ends.second;
+        // An earlier collapse of the round may have removed the edge or bent one beside it.
+        if (!is_primary(m, from, to) || !curved(from, to) || !mesh::collapse_allowed_by_kind(m, from, to)) continue;
+        if (on_fitted_edge(from) || on_fitted_edge(to)) continue;
+        const std::vector<int> star = m.triangles_of(from);
+        if (std::any_of(star.begin(), star.end(), [&](int t) { return scaled_[t] <= 0; })) continue;
+        const bool kept = try_operation(
+            star,
+            [&]() -> std::optional<std::vector<int>> {
+              std::vector<int> left;
+              for (int u : star) {
+                const auto& corners = m.triangle(u);
+                if (std::find(corners.begin(), corners.end(), to) == corners.end()) left.push_back(u);
+              }
+              if (!mesh::collapse_edge(m, relaxed, from, to, std::numeric_limits<double>::infinity(), short_new_edges))
+                return std::nullopt;
+              // The merged edge follows its curve like the one it replaces (a new primary edge
+              // left straight would be a step back).
+              for (int u : left)
+                for (int i = 0; i < 3; ++i) {
+                  const int a = m.triangle(u)[i], b = m.triangle(u)[(i + 1) % 3];
+                  if (is_primary(m, a, b) && !followable(m, a, b)) return std::nullopt;
+                }
+              return left;
+            },
+            {}, o_.coarsen_amips);
+        if (kept) {
+          for (int u : m.triangles_of(to))
+            for (int w : m.triangle(u)) changed[w] = 1;
+          ++made;
+          ++s_.coarsening_collapses;
+          break;
+        }
+      }
+    if (made == 0) break;
+  }
 }
 
 }  // namespace curvemesh::curve::detail

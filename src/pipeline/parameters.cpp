@@ -78,6 +78,8 @@ Resolved resolve(const Parameters& p, double diagonal) {
   r.optimize.curved_stop_amips = p.linear ? 0.0 : p.curved_stop_amips;
   r.curve.stop_amips = p.curved_stop_amips;
   r.curve.max_smoothing_passes = p.max_curved_passes;
+  r.curve.coarsen_edge_length = l.edge;
+  r.curve.coarsen_amips = p.stop_amips;
   return r;
 }
 

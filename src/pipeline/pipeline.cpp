@@ -63,6 +63,7 @@ Json curve_json(const curve::Stats& s, double d) {
           {"smoothing_moves", s.smoothing_moves},
           {"curved_splits", s.curved_splits},
           {"curved_collapses", s.curved_collapses},
+          {"coarsening_collapses", s.coarsening_collapses},
           {"curved_swaps", s.curved_swaps},
           {"late_projections", s.late_projections},
           {"max_amips", s.max_amips},
