@@ -150,7 +150,8 @@ int Builder::improve_triangle(int t) {
 // operation is kept only if none of them has two primary edges and, compared with `before`
 // (the triangles it replaces), fewer of them are uncertified (validity first: triangles flat
 // to round-off leave a mesh that cannot be written), or all are certified and their worst
-// energy is lower. Otherwise everything is put back.
+// energy is lower than before or at most `accept_up_to` (step 6's bound; 0 for step 4).
+// Otherwise everything is put back.
 template <class Operation>
 bool Builder::try_operation(const std::vector<int>& before, const Operation& operation, const std::vector<int>& settle,
                             double accept_up_to) {
@@ -274,7 +275,7 @@ void Builder::coarsen() {
   if (!(l > 0)) return;
   TriMesh& m = out_.linear;
   mesh::Constraints relaxed = c_;
-  relaxed.max_turning = std::max(c_.max_turning, std::numbers::pi);
+  relaxed.max_turning = std::numbers::pi;
   const double longest2 = (5.0 / 3.0 * l) * (5.0 / 3.0 * l);
   const auto short_new_edges = [&](int from, int to) {
     for (int w : m.neighbours(from))
