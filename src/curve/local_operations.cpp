@@ -153,8 +153,8 @@ int Builder::improve_triangle(int t) {
 // energy is lower than before or at most `accept_up_to` (step 6's bound; 0 for step 4).
 // Otherwise everything is put back.
 template <class Operation>
-bool Builder::try_operation(const std::vector<int>& before, const Operation& operation, const std::vector<int>& settle,
-                            double accept_up_to) {
+bool Builder::try_operation(const std::vector<int>& before, const Operation& operation,
+                            const std::vector<int>& settle, double accept_up_to) {
   TriMesh& m = out_.linear;
   double worst_before = 0;
   int invalid_before = 0;
@@ -295,7 +295,8 @@ void Builder::coarsen() {
     for (const auto& [edge, f] : m.sorted_features()) {
       const int a = edge[0], b = edge[1];
       if (f.kind != EdgeKind::primary || !curved(a, b) || !(changed[a] || changed[b])) continue;
-      if (const double len = (m.point(a) - m.point(b)).squaredNorm(); len < l * l) edges.push_back({len, {a, b}});
+      if (const double len = (m.point(a) - m.point(b)).squaredNorm(); len < l * l)
+        edges.push_back({len, {a, b}});
     }
     std::sort(edges.begin(), edges.end());
     std::fill(changed.begin(), changed.end(), 0);
@@ -304,7 +305,8 @@ void Builder::coarsen() {
       for (const auto& ends : {std::pair{e[0], e[1]}, std::pair{e[1], e[0]}}) {
         const int from = ends.first, to = ends.second;
         // An earlier collapse of the round may have removed the edge or bent one beside it.
-        if (!is_primary(m, from, to) || !curved(from, to) || !mesh::collapse_allowed_by_kind(m, from, to)) continue;
+        if (!is_primary(m, from, to) || !curved(from, to) || !mesh::collapse_allowed_by_kind(m, from, to))
+          continue;
         if (on_fitted_edge(from) || on_fitted_edge(to)) continue;
         const std::vector<int> star = m.triangles_of(from);
         if (std::any_of(star.begin(), star.end(), [&](int t) { return scaled_[t] <= 0; })) continue;
@@ -316,7 +318,8 @@ void Builder::coarsen() {
                 const auto& corners = m.triangle(u);
                 if (std::find(corners.begin(), corners.end(), to) == corners.end()) left.push_back(u);
               }
-              if (!mesh::collapse_edge(m, relaxed, from, to, std::numeric_limits<double>::infinity(), short_new_edges))
+              if (!mesh::collapse_edge(m, relaxed, from, to, std::numeric_limits<double>::infinity(),
+                                       short_new_edges))
                 return std::nullopt;
               // The merged edge follows its curve like the one it replaces (a new primary edge
               // left straight would be a step back).

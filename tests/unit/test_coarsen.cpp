@@ -38,6 +38,24 @@ double worst_energy(const TriMesh& m) {
   return worst;
 }
 
+// Coarsens grid f with o, then checks every invariant. coarsen compacts: the fixed vertices are
+// renumbered, but none may be removed or moved (the invariants check compares them by position,
+// so the fixture's record of them is renumbered first).
+void coarsen_and_check(mesh::fixture::Fixture& f, const optimize::Options& o, optimize::Stats& s,
+                       const char* what) {
+  optimize::coarsen(f.mesh, f.constraints, o, s);
+  std::map<int, Vec2> fixed;
+  for (int v = 0; v < f.mesh.vertex_count(); ++v)
+    if (f.mesh.tag(v).kind == VertexKind::fixed) fixed[v] = f.mesh.point(v);
+  ASSERT_EQ(fixed.size(), f.fixed_positions.size());
+  std::set<std::pair<double, double>> was, is;
+  for (const auto& [v, p] : f.fixed_positions) was.insert({p.x(), p.y()});
+  for (const auto& [v, p] : fixed) is.insert({p.x(), p.y()});
+  EXPECT_EQ(was, is);
+  f.fixed_positions = fixed;
+  mesh::fixture::expect_invariants(f, what);
+}
+
 TEST(Coarsen, RandomMeshesKeepEveryInvariantAndTheEnergyBound) {
   for (unsigned seed = 1; seed <= 6; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
@@ -49,19 +67,7 @@ TEST(Coarsen, RandomMeshesKeepEveryInvariantAndTheEnergyBound) {
     o.edge_length = 0.25;
     o.stop_max_amips = 10;
     optimize::Stats s;
-    optimize::coarsen(f.mesh, f.constraints, o, s);
-    // coarsen compacts: the fixed vertices are renumbered, but none was removed or moved (the
-    // invariants check below compares them by position).
-    std::map<int, Vec2> fixed;
-    for (int v = 0; v < f.mesh.vertex_count(); ++v)
-      if (f.mesh.tag(v).kind == VertexKind::fixed) fixed[v] = f.mesh.point(v);
-    ASSERT_EQ(fixed.size(), f.fixed_positions.size());
-    std::set<std::pair<double, double>> was, is;
-    for (const auto& [v, p] : f.fixed_positions) was.insert({p.x(), p.y()});
-    for (const auto& [v, p] : fixed) is.insert({p.x(), p.y()});
-    EXPECT_EQ(was, is);
-    f.fixed_positions = fixed;
-    mesh::fixture::expect_invariants(f, "coarsening");
+    coarsen_and_check(f, o, s, "coarsening");
     if (HasFatalFailure()) return;
 
     EXPECT_EQ(s.before_coarsening, before);
@@ -137,13 +143,7 @@ TEST(Coarsen, InTheCurvedPipelineTrianglesAlongCurvesKeepTheCurvedBound) {
     o.stop_max_amips = 10;
     o.curved_stop_amips = 20;
     optimize::Stats s;
-    optimize::coarsen(f.mesh, f.constraints, o, s);
-    std::map<int, Vec2> fixed;
-    for (int v = 0; v < f.mesh.vertex_count(); ++v)
-      if (f.mesh.tag(v).kind == VertexKind::fixed) fixed[v] = f.mesh.point(v);
-    ASSERT_EQ(fixed.size(), f.fixed_positions.size());
-    f.fixed_positions = fixed;
-    mesh::fixture::expect_invariants(f, "coarsening for the curved pipeline");
+    coarsen_and_check(f, o, s, "coarsening for the curved pipeline");
     if (HasFatalFailure()) return;
     EXPECT_GT(s.coarsening_collapses, 0);
     EXPECT_LE(worst_energy(f.mesh), std::max(o.stop_max_amips, linear_before));

@@ -18,9 +18,10 @@ namespace {
 // every scale, whose primary edges the linear stage keeps at α of turning each.
 std::string curves() {
   std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 400 300\">";
-  for (const auto& [cx, cy, r] : {std::array<double, 3>{100, 100, 60}, {300, 90, 30}, {300, 200, 12}, {90, 240, 25}})
-    s += "<circle cx=\"" + std::to_string(cx) + "\" cy=\"" + std::to_string(cy) + "\" r=\"" + std::to_string(r) +
-         "\" fill=\"none\" stroke=\"black\"/>";
+  for (const auto& [cx, cy, r] :
+       {std::array<double, 3>{100, 100, 60}, {300, 90, 30}, {300, 200, 12}, {90, 240, 25}})
+    s += "<circle cx=\"" + std::to_string(cx) + "\" cy=\"" + std::to_string(cy) + "\" r=\"" +
+         std::to_string(r) + "\" fill=\"none\" stroke=\"black\"/>";
   s += "<path d=\"M 160 250 C 190 180 220 320 250 250 S 310 180 340 250\" fill=\"none\" stroke=\"black\"/>";
   s += "<ellipse cx=\"200\" cy=\"150\" rx=\"40\" ry=\"15\" fill=\"none\" stroke=\"black\"/>";
   return s + "</svg>";
@@ -44,15 +45,16 @@ double longest_edge(const curve::CurvedMesh& c) {
   for (int t = 0; t < c.linear.triangle_slots(); ++t) {
     if (!c.linear.alive(t)) continue;
     const auto& tri = c.linear.triangle(t);
-    for (int i = 0; i < 3; ++i) longest = std::max(longest, (c.linear.point(tri[i]) - c.linear.point(tri[(i + 1) % 3])).norm());
+    for (int i = 0; i < 3; ++i)
+      longest = std::max(longest, (c.linear.point(tri[i]) - c.linear.point(tri[(i + 1) % 3])).norm());
   }
   return longest;
 }
 
 TEST(CurveCoarsen, FewerEdgesAlongTheCurvesEachOnItsCurveCertifiedAndWithinTheBound) {
   Parameters p;
-  const pipeline::Result r =
-      pipeline::run(pipeline::Source::svg(curves(), "curves"), p, pipeline::RunOptions(pipeline::Stage::optimize));
+  const pipeline::Result r = pipeline::run(pipeline::Source::svg(curves(), "curves"), p,
+                                           pipeline::RunOptions(pipeline::Stage::optimize));
   const Curved without = curve_it(r, false), with = curve_it(r, true);
   const double l = r.resolved.curve.coarsen_edge_length;
   ASSERT_GT(l, 0);
@@ -91,7 +93,11 @@ TEST(CurveCoarsen, FewerEdgesAlongTheCurvesEachOnItsCurveCertifiedAndWithinTheBo
     most_turning = std::max(most_turning, turning);
     for (int k = 0; k < 4; ++k) {
       const double t = ta + (tb - ta) * k / 3.0;
-      EXPECT_LT((with.mesh.nodes[line.nodes[k == 0 ? 0 : k == 3 ? 1 : k + 1]] - section.eval(t)).norm(),
+      EXPECT_LT((with.mesh.nodes[line.nodes[k == 0   ? 0
+                                            : k == 3 ? 1
+                                                     : k + 1]] -
+                 section.eval(t))
+                    .norm(),
                 1e-9 * r.resolved.d)
           << "node " << k << " of primary edge " << a << "-" << b;
     }
