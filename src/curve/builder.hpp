@@ -25,6 +25,7 @@
 #include "curve/curve.hpp"
 #include "geometry/p3_triangle.hpp"
 #include "mesh/invariants.hpp"
+#include "mesh/operations.hpp"  // CollapseTest
 
 namespace curvemesh::curve::detail {
 
@@ -167,6 +168,8 @@ class Builder {
   template <class Operation>
   bool try_operation(const std::vector<int>& before, const Operation& operation, const std::vector<int>& settle = {},
                      double accept_up_to = 0);
+  std::optional<std::vector<int>> collapse(int from, int to, const mesh::Constraints& constraints,
+                                           const mesh::CollapseTest* also = nullptr);
   void coarsen();
   void settle_vertex(int v, const std::vector<int>& triangles);
   bool place_triangle(int t);

@@ -59,16 +59,8 @@ int Builder::improve_triangle(int t) {
   for (const auto& edge : edges)
     for (const auto& ends : {std::pair{edge[0], edge[1]}, std::pair{edge[1], edge[0]}}) {
       const int from = ends.first, to = ends.second;
-      const std::vector<int> star = m.triangles_of(from);
-      if (try_operation(star, [&]() -> std::optional<std::vector<int>> {
-            std::vector<int> kept;
-            for (int u : star) {
-              const auto& corners = m.triangle(u);
-              if (std::find(corners.begin(), corners.end(), to) == corners.end()) kept.push_back(u);
-            }
-            if (!mesh::collapse_edge(m, c_, from, to, std::numeric_limits<double>::infinity())) return std::nullopt;
-            return kept;
-          })) {
+      const std::vector<int> star = m.triangles_of(from);  // a copy: the collapse changes the list
+      if (try_operation(star, [&] { return collapse(from, to, c_); })) {
         ++s_.curved_collapses;
         return 1;
       }
@@ -261,6 +253,24 @@ bool Builder::place_triangle(int t) {
   return true;
 }
 
+// Collapses `from` onto `to` under `constraints` (and the caller's test `also`, if any), as an
+// operation for try_operation: the triangles of from's star that stay (those without `to`), or
+// nothing if the collapse is refused.
+std::optional<std::vector<int>> Builder::collapse(int from, int to, const mesh::Constraints& constraints,
+                                                  const mesh::CollapseTest* also) {
+  TriMesh& m = out_.linear;
+  std::vector<int> kept;
+  for (int u : m.triangles_of(from)) {
+    const auto& corners = m.triangle(u);
+    if (std::find(corners.begin(), corners.end(), to) == corners.end()) kept.push_back(u);
+  }
+  const double unbounded = std::numeric_limits<double>::infinity();
+  if (!(also ? mesh::collapse_edge(m, constraints, from, to, unbounded, *also)
+             : mesh::collapse_edge(m, constraints, from, to, unbounded)))
+    return std::nullopt;
+  return kept;
+}
+
 // Step 6: coarsening along the curves. Invariant 3 (a primary edge turns at most α) is what lets
 // the linear mesh be curved at all (Theorem 3.4); once the triangles are curved and certified it
 // is not needed any more (§4.2, Curved Mesh Optimization), and it is what keeps a curve's edges
@@ -276,11 +286,8 @@ void Builder::coarsen() {
   TriMesh& m = out_.linear;
   mesh::Constraints relaxed = c_;
   relaxed.max_turning = std::numbers::pi;
-  const double longest2 = (5.0 / 3.0 * l) * (5.0 / 3.0 * l);
-  const auto short_new_edges = [&](int from, int to) {
-    for (int w : m.neighbours(from))
-      if (w != to && (m.point(w) - m.point(to)).squaredNorm() > longest2) return false;
-    return true;
+  const mesh::CollapseTest short_new_edges = [&](int from, int to) {
+    return mesh::collapse_keeps_edges_short(m, from, to, [&](int, int) { return 1.25 * l; });  // 5/3 of l
   };
   const auto curved = [&](int a, int b) {
     const auto it = curved_.find(mesh::edge_key(a, b));
@@ -313,17 +320,11 @@ void Builder::coarsen() {
         const bool kept = try_operation(
             star,
             [&]() -> std::optional<std::vector<int>> {
-              std::vector<int> left;
-              for (int u : star) {
-                const auto& corners = m.triangle(u);
-                if (std::find(corners.begin(), corners.end(), to) == corners.end()) left.push_back(u);
-              }
-              if (!mesh::collapse_edge(m, relaxed, from, to, std::numeric_limits<double>::infinity(),
-                                       short_new_edges))
-                return std::nullopt;
+              const std::optional<std::vector<int>> left = collapse(from, to, relaxed, &short_new_edges);
+              if (!left) return std::nullopt;
               // The merged edge follows its curve like the one it replaces (a new primary edge
               // left straight would be a step back).
-              for (int u : left)
+              for (int u : *left)
                 for (int i = 0; i < 3; ++i) {
                   const int a = m.triangle(u)[i], b = m.triangle(u)[(i + 1) % 3];
                   if (is_primary(m, a, b) && !followable(m, a, b)) return std::nullopt;

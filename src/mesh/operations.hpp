@@ -46,6 +46,17 @@ bool collapse_allowed_by_tags(const TriMesh& mesh, const Constraints& constraint
 // ends a collapse changed may ask it for every edge before the pass.
 bool collapse_allowed_by_kind(const TriMesh& mesh, int from, int to);
 
+// TetWild's rule for collapses: no new edge longer than 4/3 of the target, or the split and
+// collapse passes undo each other forever. target(to, w) is the target of the new edge (to, w);
+// a caller passes a larger one to bound the edges at another multiple. For collapse_edge's test.
+template <class Target>
+bool collapse_keeps_edges_short(const TriMesh& m, int from, int to, const Target& target) {
+  for (int t : m.triangles_of(from))  // a neighbour seen twice is checked twice: no harm, no sorting
+    for (int w : m.triangle(t))
+      if (w != from && w != to && (m.point(w) - m.point(to)).norm() > 4.0 / 3.0 * target(to, w)) return false;
+  return true;
+}
+
 // Replaces the diagonal (a, b) of the quad formed by its two triangles by the other diagonal,
 // if the largest AMIPS energy of the two triangles decreases or stays at most energy_bound.
 // Tagged edges never swap. `left_hint` may name the triangle with directed edge a -> b, which

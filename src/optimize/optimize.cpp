@@ -120,16 +120,6 @@ int swap_pass(TriMesh& m) {
   return swap_pass(m, [](int, int) { return true; }, [](int, int) {});
 }
 
-// TetWild's rule: a collapse must not create an edge longer than 4/3 of the target, or the
-// split and collapse passes undo each other forever.
-template <class Target>
-bool collapse_keeps_edges_short(const TriMesh& m, int from, int to, const Target& target) {
-  for (int t : m.triangles_of(from))  // a neighbour seen twice is checked twice: no harm, no sorting
-    for (int w : m.triangle(t))
-      if (w != from && w != to && (m.point(w) - m.point(to)).norm() > 4.0 / 3.0 * target(to, w)) return false;
-  return true;
-}
-
 // Lipschitz grading of a per-vertex sizing field over the mesh edges: no vertex asks for more
 // than its neighbour's size plus `gradation` times their distance (Dijkstra from the smallest).
 void grade(const TriMesh& m, std::vector<double>& size, double gradation) {
@@ -296,7 +286,7 @@ void coarsen(TriMesh& m, const mesh::Constraints& c, const Options& o, Stats& s)
     return worst;
   };
   const mesh::CollapseTest short_enough = [&](int from, int to) {
-    return collapse_keeps_edges_short(m, from, to, [&](int, int) { return 1.25 * target; });  // 5/3 of it
+    return mesh::collapse_keeps_edges_short(m, from, to, [&](int, int) { return 1.25 * target; });  // 5/3 of it
   };
   // A collapse: every new triangle at most max(stop energy, the worst it replaces), as in the
   // loop. In the curved pipeline it is also taken back when a triangle it leaves is above the
@@ -442,7 +432,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
       // curves, every edge is shorter than the target, and most are on or next to a curve), and
       // cost least.
       const mesh::CollapseTest short_enough = [&](int from, int to) {
-        return collapse_keeps_edges_short(m, from, to, edge_target);
+        return mesh::collapse_keeps_edges_short(m, from, to, edge_target);
       };
       const auto collapse = [&](int from, int to) {
         return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough);
