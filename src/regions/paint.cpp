@@ -1,6 +1,7 @@
 #include "regions/paint.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <utility>
 
@@ -36,6 +37,71 @@ double corner_area(const io::HighOrderMesh& mesh, int t) {
 // Triangles sampled per face: its largest first.
 constexpr int kSamples = 12;
 
+// A face's sample points.
+struct FaceSamples {
+  std::vector<geometry::Vec2> points;
+  geometry::Box2 box;  // of the points
+  double spread = 0;   // the largest distance between the first point and another
+};
+
+// The squared distance between two boxes (0 when they meet).
+double squared_gap(const geometry::Box2& a, const geometry::Box2& b) {
+  const double dx = std::max({a.min.x() - b.max.x(), 0.0, b.min.x() - a.max.x()});
+  const double dy = std::max({a.min.y() - b.max.y(), 0.0, b.min.y() - a.max.y()});
+  return dx * dx + dy * dy;
+}
+
+// Whether fill layer l covers face f. A face bounded by lines on the layer's outline lies on one
+// side of it, and every sample says the same. Where the mesh follows the outline only within ε,
+// the outline may cross the face; and as a secondary line may leave one curve for a neighbour's
+// envelope, a sample farther than ε from the outline can still lie on the side the face is not
+// (a triangle reaching into a thin shape drawn over the face). So the face is decided at its
+// sample farthest from the outline, each sample's distance bounded within a fifth of it.
+bool covers(const Outline& outline, const svg::FillLayer& layer, const FaceSamples& s, const ClassifyOptions& o,
+            int l, int f) {
+  // Every sample outside the layer's box: wound around by none of its loops.
+  if (s.points.empty() || squared_gap(s.box, layer.bounds) > 0) return false;
+  // A sample farther from the outline than from every other sample says for all of them: no
+  // clearance beyond twice the spread is needed.
+  const double wanted = std::max(2 * s.spread, o.clearance);
+  const std::size_t n = s.points.size();
+  std::vector<Winding> w(n);
+  std::vector<char> asked(n, 0);
+  const auto ask = [&](std::size_t i) {
+    asked[i] = 1;
+    if (const double gap2 = layer.bounds.squared_distance(s.points[i]); gap2 > 0)
+      w[i].clearance = std::sqrt(gap2);  // outside the box: winding 0
+    else
+      w[i] = outline.winding(s.points[i], o.resolution, wanted);
+  };
+  // First the samples no earlier answer covers (a sample closer to an asked one than its
+  // clearance is on its side): where they all agree, so do the rest.
+  int side = -1;  // -1 none yet, else whether inside
+  bool disagree = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    const geometry::Vec2& p = s.points[i];
+    bool covered = false;
+    for (std::size_t j = 0; j < i && !covered; ++j)
+      covered = asked[j] && w[j].decided && (p - s.points[j]).norm() < w[j].clearance;
+    if (covered) continue;
+    ask(i);
+    if (!w[i].decided) continue;
+    const bool in = inside(w[i].number, layer.rule);
+    if (w[i].clearance > (p - s.points[0]).norm() + s.spread) return in;  // covers every sample
+    disagree = disagree || (side >= 0 && side != int(in));
+    side = in;
+  }
+  if (side < 0) throw Undecided(l, f);
+  if (!disagree) return side;
+  // The samples disagree: the one farthest from the outline decides.
+  for (std::size_t i = 0; i < n; ++i)
+    if (!asked[i]) ask(i);
+  std::size_t best = n;
+  for (std::size_t i = 0; i < n; ++i)
+    if (w[i].decided && (best == n || w[i].clearance > w[best].clearance)) best = i;
+  return inside(w[best].number, layer.rule);
+}
+
 }  // namespace
 
 Classification classify(const io::HighOrderMesh& mesh, const std::vector<svg::FillLayer>& fills,
@@ -48,13 +114,18 @@ Classification classify(const io::HighOrderMesh& mesh, const std::vector<svg::Fi
   for (int t = 0; t < mesh.triangle_count(); ++t) members[c.faces.of_triangle[t]].push_back(t);
   std::vector<double> area(mesh.triangle_count());
   for (int t = 0; t < mesh.triangle_count(); ++t) area[t] = corner_area(mesh, t);
-  std::vector<std::vector<geometry::Vec2>> samples(face_count);
+  std::vector<FaceSamples> samples(face_count);
   for (int f = 0; f < face_count; ++f) {
     std::vector<int>& m = members[f];
     const auto count = std::min<std::size_t>(kSamples, m.size());
     std::partial_sort(m.begin(), m.begin() + count, m.end(),
                       [&](int a, int b) { return area[a] != area[b] ? area[a] > area[b] : a < b; });
-    for (std::size_t i = 0; i < count; ++i) add_samples(mesh, m[i], samples[f]);
+    FaceSamples& s = samples[f];
+    for (std::size_t i = 0; i < count; ++i) add_samples(mesh, m[i], s.points);
+    for (const geometry::Vec2& p : s.points) {
+      s.box.add(p);
+      s.spread = std::max(s.spread, (p - s.points[0]).norm());
+    }
   }
   std::vector<Outline> outlines;
   outlines.reserve(fills.size());
@@ -63,20 +134,7 @@ Classification classify(const io::HighOrderMesh& mesh, const std::vector<svg::Fi
   for (int f = 0; f < face_count; ++f) {
     // The topmost covering layer: walk down the paint order, stop at the first that covers.
     for (int l = static_cast<int>(fills.size()) - 1; l >= 0; --l) {
-      const svg::FillLayer& layer = fills[l];
-      // Far outside the layer's box (the usual case): wound around by none of its loops.
-      if (!samples[f].empty() && layer.bounds.squared_distance(samples[f][0]) >= options.clearance * options.clearance)
-        continue;
-      Winding best;
-      bool any = false;
-      for (const geometry::Vec2& p : samples[f]) {
-        const Winding w = outlines[l].winding(p, options.resolution, options.clearance);
-        if (!w.decided) continue;
-        if (!any || w.clearance > best.clearance) best = w, any = true;
-        if (w.clearance >= options.clearance) break;
-      }
-      if (!any) throw Undecided(l, f);
-      if (inside(best.number, layer.rule)) {
+      if (covers(outlines[l], fills[l], samples[f], options, l, f)) {
         c.visible[f] = l;
         break;
       }

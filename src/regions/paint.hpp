@@ -7,9 +7,11 @@
 //
 // A face is bounded by feature lines on input curves, so each shape's winding number is the same
 // all over it, except where the mesh follows an outline only within ε (secondary lines) or drops
-// a piece of it (degenerate curves): the face is then decided at its sample point farthest from
-// that outline, one at least ε from it where there is one. A face that lies entirely on an
-// outline, as far as doubles can tell, is not guessed: classify throws Undecided.
+// a piece of it (degenerate curves). There the face is decided at its sample point farthest from
+// that outline. (Not at the first point more than ε from it: a secondary line may leave one curve
+// for a neighbour's envelope, so a triangle of the face can reach well into a thin shape drawn
+// over it.) A face that lies entirely on an outline, as far as doubles can tell, is not guessed:
+// classify throws Undecided.
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -21,8 +23,8 @@
 namespace curvemesh::regions {
 
 struct ClassifyOptions {
-  // How far the mesh's feature lines may lie from the input curves (ε, absolute): a sample point
-  // this far from a shape's outline is on the side its face is.
+  // How far the mesh's feature lines may lie from the input curves (ε, absolute): the least
+  // distance from an outline worth knowing for a sample point.
   double clearance = 0;
   // Below this distance (absolute) a point counts as lying on an outline.
   double resolution = 0;

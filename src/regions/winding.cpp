@@ -34,9 +34,12 @@ struct Query {
   bool decided = true;
 
   // Whether a box (of a run or a piece) can be taken whole: it leaves p outside, and either far
-  // enough or too small to tell more.
+  // enough, or small beside its distance to p (a quarter of it: the box's gap is then at least
+  // 4/5 of p's distance to what is in it), or too small to tell more.
   bool whole(const Box2& box, double gap2, int depth) const {
-    return gap2 > 0 && (gap2 >= wanted2 || 16 * squared_diagonal(box) <= wanted2 || depth >= 60);
+    if (!(gap2 > 0)) return false;
+    const double diagonal2 = squared_diagonal(box);
+    return gap2 >= wanted2 || 16 * diagonal2 <= gap2 || diagonal2 <= resolution2 || depth >= 60;
   }
 
   void piece(const CubicBezier& c, int depth) {

@@ -17,8 +17,8 @@ struct Winding {
   int number = 0;
   // False when the point lies on the outline to within `resolution`: no number is decided.
   bool decided = true;
-  // A lower bound on the point's distance to the outline, found up to `wanted` (it may be
-  // larger than that; it is never larger than the true distance).
+  // A lower bound on the point's distance to the outline: at least `wanted`, or at least 4/5 of
+  // the distance (never larger than the distance).
   double clearance = 0;
 };
 
@@ -32,7 +32,7 @@ class Outline {
 
   // `resolution`: control boxes smaller than this that still contain the point count as the
   // point lying on the outline. `wanted`: the clearance that is enough to know (pieces are split
-  // only far enough to show it).
+  // only far enough to show it, or to bound the distance within a fifth of it).
   Winding winding(const geometry::Vec2& point, double resolution, double wanted) const;
 
  private:

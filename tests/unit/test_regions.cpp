@@ -212,6 +212,39 @@ TEST(Faces, AFaceAnOutlineCrossesIsDecidedAtItsPointFarthestFromIt) {
   EXPECT_EQ(regions::classify(m, {layer_of({half_plane(2.5)})}, o).visible[0], 0);
 }
 
+TEST(Faces, AFaceAnOutlineCrossesIsNotDecidedAtItsFirstSampleFarFromIt) {
+  // One face of two triangles, and a small filled square around its first sample (the centroid
+  // of the first triangle): that sample is 0.1 inside it, more than ε, as a triangle of a face
+  // can reach into a thin shape drawn over it where a secondary line leaves the shape's outline
+  // for a neighbour's envelope. The other samples are outside and farther from it (0.33 to
+  // 1.27): the face is not covered.
+  io::HighOrderMesh m;
+  m.nodes = {Vec2(0, 0), Vec2(2, 0), Vec2(2, 2), Vec2(0, 2)};
+  m.add_triangle(std::vector<int>{0, 1, 2});
+  m.add_triangle(std::vector<int>{0, 2, 3});
+  const Vec2 centroid = (m.nodes[0] + m.nodes[1] + m.nodes[2]) / 3.0;
+  const auto square = [&](double h) {
+    svg::Subpath s;
+    const Vec2 c[4] = {centroid + Vec2(-h, -h), centroid + Vec2(h, -h), centroid + Vec2(h, h), centroid + Vec2(-h, h)};
+    s.start = c[0];
+    for (int i = 0; i < 4; ++i) s.segments.push_back(CubicBezier::line(c[i], c[(i + 1) % 4]));
+    return s;
+  };
+  regions::ClassifyOptions o;
+  o.clearance = 0.05;
+  o.resolution = 1e-12;
+  EXPECT_EQ(regions::classify(m, {layer_of({square(0.1)})}, o).visible[0], -1);
+  // Grown to a half-width of 0.75: the centroid, 0.75 from its sides, is the farthest sample (the
+  // others are at most 0.36 from them); the face is covered.
+  EXPECT_EQ(regions::classify(m, {layer_of({square(0.75)})}, o).visible[0], 0);
+  // Two layers: the square on top of a layer covering the whole face. The face is the lower one's.
+  svg::Subpath all;
+  const Vec2 c[4] = {Vec2(-1, -1), Vec2(3, -1), Vec2(3, 3), Vec2(-1, 3)};
+  all.start = c[0];
+  for (int i = 0; i < 4; ++i) all.segments.push_back(CubicBezier::line(c[i], c[(i + 1) % 4]));
+  EXPECT_EQ(regions::classify(m, {layer_of({all}), layer_of({square(0.1)})}, o).visible[0], 0);
+}
+
 TEST(Regions, LoneCircleAreaIsItsCurvesArea) {
   const pipeline::Result r = mesh_painted(doc(R"(<circle id="c" cx="5" cy="5" r="3" fill="#336699"/>)"));
   ASSERT_TRUE(r.painted);
