@@ -13,6 +13,7 @@ int TriMesh::add_vertex(const Vec2& p, const VertexTag& tag) {
   exact_index_.push_back(-1);
   vertex_triangles_.emplace_back();
   tagged_.emplace_back();
+  has_tagged_.push_back(0);
   return vertex_count() - 1;
 }
 
@@ -76,6 +77,7 @@ void TriMesh::set_tag(int v, const VertexTag& tag) {
 }
 
 const EdgeFeature* TriMesh::feature(int a, int b) const {
+  if (!has_tagged_[a] || !has_tagged_[b]) return nullptr;
   for (const TaggedEdge& e : tagged_[a])
     if (e.other == b) return &e.feature;
   return nullptr;
@@ -87,6 +89,7 @@ void TriMesh::put_feature(int a, int b, const EdgeFeature& f) {
     const auto it = std::lower_bound(list.begin(), list.end(), y, [](const TaggedEdge& e, int v) { return e.other < v; });
     if (it != list.end() && it->other == y) it->feature = f;
     else list.insert(it, {y, f});
+    has_tagged_[x] = 1;
   }
 }
 
@@ -96,6 +99,7 @@ void TriMesh::erase_feature(int a, int b) {
     const int other = y;  // clang 14 cannot capture a structured binding
     const auto it = std::find_if(list.begin(), list.end(), [other](const TaggedEdge& e) { return e.other == other; });
     if (it != list.end()) list.erase(it);
+    has_tagged_[x] = !list.empty();
   }
 }
 
@@ -138,6 +142,7 @@ void TriMesh::rollback() {
         exact_index_.pop_back();
         vertex_triangles_.pop_back();
         tagged_.pop_back();
+        has_tagged_.pop_back();
         break;
       case Change::Kind::add_triangle:
         unlink(triangle_slots() - 1);
@@ -261,6 +266,8 @@ std::vector<int> TriMesh::compact() {
   }
   tagged_.resize(next);
   vertex_triangles_.resize(next);
+  has_tagged_.resize(next);
+  for (int v = 0; v < next; ++v) has_tagged_[v] = !tagged_[v].empty();
 
   points_ = std::move(points);
   vertex_tags_ = std::move(tags);

@@ -145,6 +145,9 @@ class TriMesh {
   // scan of one small array (the operations ask for edge tags all the time; a hash map's nodes
   // were a cache miss each), and a vertex's tagged edges need no walk round its star.
   std::vector<std::vector<TaggedEdge>> tagged_;
+  // Per vertex, whether its list is not empty: a byte each, so that the usual look-up (an edge
+  // with an end on no tagged edge) reads no list at all.
+  std::vector<std::uint8_t> has_tagged_;
   void put_feature(int a, int b, const EdgeFeature& f);  // inserts or overwrites, unrecorded
   void erase_feature(int a, int b);                      // unrecorded; none is fine
   int alive_triangles_ = 0;
