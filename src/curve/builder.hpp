@@ -84,7 +84,9 @@ class Builder {
   geometry::P3Nodes element(const mesh::Triangle& tri) const;
   bool choose_centre(geometry::P3Nodes& p, int& choice, double& scaled) const;
   double badness(int t) const;
-  void choose_centre_of(int t);
+  // Returns the chosen centre's energy(t) when every lattice point's det J is positive there
+  // (badness is then that energy), else NaN.
+  double choose_centre_of(int t);
   std::optional<double> certify(int t) const;
   bool certify_all(const std::vector<int>& triangles);
   // The nodes of some triangles, to put back when a move is refused.
@@ -172,7 +174,7 @@ class Builder {
                                            const mesh::CollapseTest* also = nullptr);
   void coarsen();
   void settle_vertex(int v, const std::vector<int>& triangles);
-  bool place_triangle(int t);
+  bool place_triangle(int t, double* known_energy = nullptr);
 
   // ----- fit.cpp: step 5 ------------------------------------------------------------------------
   void fit(int a, int b);

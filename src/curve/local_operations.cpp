@@ -1,6 +1,9 @@
 // Step 4 of curve(), the local operations of §4.1 on the curved mesh: for triangles still above
 // the stop energy after smoothing, a swap, a collapse or splits, each tried on the linear mesh
 // under its journal and kept only if the curved triangles it changes get better.
+#include <cmath>
+#include <limits>
+
 #include "curve/builder.hpp"
 #include "mesh/operations.hpp"
 
@@ -180,16 +183,23 @@ bool Builder::try_operation(const std::vector<int>& before, const Operation& ope
     }
     out_.triangles.resize(m.triangle_slots());
     scaled_.resize(m.triangle_slots(), -1.0);
-    for (int t : *after) ok = ok && place_triangle(t);
+    // The energies placing the centres found (NaN where none), good while no vertex settles.
+    std::vector<double> known(after->size(), std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t k = 0; k < after->size(); ++k) ok = ok && place_triangle((*after)[k], &known[k]);
+    const bool settled = m.vertex_count() > static_cast<int>(vertices0) || !settle.empty();
     for (int v = static_cast<int>(vertices0); ok && v < m.vertex_count(); ++v) settle_vertex(v, *after);
     for (int v : settle)
       if (ok) settle_vertex(v, *after);
     if (ok) {
       // The energies first: where nothing before was uncertified, a triangle above both the worst
-      // before and accept_up_to refuses the operation, and no certificate need be made.
+      // before and accept_up_to refuses the operation, and no certificate need be made. Only
+      // whether the worst after is below the worst before or at most accept_up_to counts, so
+      // each energy need only be exact below the larger of the two.
+      const double bound = std::nextafter(std::max(worst_before, accept_up_to), std::numeric_limits<double>::infinity());
       double worst_after = 0;
-      for (int t : *after) {
-        worst_after = std::max(worst_after, energy(t));
+      for (std::size_t k = 0; k < after->size(); ++k) {
+        const int t = (*after)[k];
+        worst_after = std::max(worst_after, !settled && !std::isnan(known[k]) ? known[k] : energy(t, bound));
         if (invalid_before == 0 && worst_after >= worst_before && worst_after > accept_up_to) {
           ok = false;
           break;
@@ -240,7 +250,7 @@ void Builder::settle_vertex(int v, const std::vector<int>& triangles) {
 
 // Gives triangle t (changed by an operation) its nodes: its edges' (made where new), a new
 // centre. False if it has two primary edges (step 1 gave every triangle at most one).
-bool Builder::place_triangle(int t) {
+bool Builder::place_triangle(int t, double* known_energy) {
   const TriMesh& m = out_.linear;
   const mesh::Triangle tri = m.triangle(t);
   if (primary_edges_of(m, tri) > 1) return false;
@@ -249,7 +259,8 @@ bool Builder::place_triangle(int t) {
   ids[9] = static_cast<int>(out_.nodes.size());
   out_.nodes.push_back((at(tri[0]) + at(tri[1]) + at(tri[2])) / 3);
   out_.triangles[t] = ids;
-  if (curved_edge_of(tri) >= 0) choose_centre_of(t);
+  const double e = curved_edge_of(tri) >= 0 ? choose_centre_of(t) : std::numeric_limits<double>::quiet_NaN();
+  if (known_energy) *known_energy = e;
   return true;
 }
 

@@ -108,29 +108,46 @@ bool Builder::choose_centre(geometry::P3Nodes& p, int& choice, double& scaled) c
   return false;
 }
 
+namespace {
+
+// Badness from the lattice values of nodes p (see Builder::badness).
+double badness_of(const geometry::P3Nodes& p, const geometry::P3LatticeValues& v) {
+  if (v.min_det > 0) return v.max_amips;
+  double side = 0;
+  for (int i = 0; i < 3; ++i) side = std::max(side, (p[i] - p[(i + 1) % 3]).squaredNorm());
+  return 1e12 - (side > 0 ? v.min_det / side : -1e6);
+}
+
+}  // namespace
+
 // How far triangle t is from valid, or how good it is: its worst AMIPS energy when det J > 0 at
 // every point of the order-6 lattice, else 1e12 less the smallest det J there over the squared
 // longest side (lower is better either way; only a certificate decides validity).
 double Builder::badness(int t) const {
   const geometry::P3Nodes p = nodes_of(t);
-  const auto [lo, max_amips] = geometry::p3_lattice_values(p);
-  if (lo > 0) return max_amips;
-  double side = 0;
-  for (int i = 0; i < 3; ++i) side = std::max(side, (p[i] - p[(i + 1) % 3]).squaredNorm());
-  return 1e12 - (side > 0 ? lo / side : -1e6);
+  return badness_of(p, geometry::p3_lattice_values(p));
 }
 
 // The centre of triangle t (its edge nodes placed) among the candidates: the lowest badness.
-void Builder::choose_centre_of(int t) {
+// p3_lattice_values's max_amips is p3_max_amips's value, bit for bit (same lattice, same order).
+double Builder::choose_centre_of(int t) {
   geometry::P3Nodes q = nodes_of(t);
   Vec2& centre = out_.nodes[out_.triangles[t][9]];
   double best = std::numeric_limits<double>::infinity();
+  double energy = std::numeric_limits<double>::quiet_NaN();
   for (const Vec2& c : geometry::p3_centre_candidates(q)) {
     const Vec2 keep = centre;
     centre = c;
-    if (const double b = badness(t); b < best) best = b;
-    else centre = keep;
+    q[9] = c;
+    const geometry::P3LatticeValues v = geometry::p3_lattice_values(q);
+    if (const double b = badness_of(q, v); b < best) {
+      best = b;
+      energy = v.min_det > 0 ? v.max_amips : std::numeric_limits<double>::quiet_NaN();
+    } else {
+      centre = keep;
+    }
   }
+  return energy;
 }
 
 // The scaled Jacobian of triangle t if it is certified positive.
