@@ -558,6 +558,13 @@ def test_command_with_a_fake_curvemesh(tmp_path):
     assert records[0]["agreement"] == 1.0 and records[0]["compared"] == 168
     assert "no mesh" in records[2]["message"]
     assert "agreement >= 0.99: 2 of 2 drawings" in r.stdout and "PASS" in r.stdout
+    # ... unless failed drawings are limited: one failed, more than --max-failed 0.
+    r = run_script("--curvemesh", good, "--linear", str(listing), str(tmp_path / "broken.svg"),
+                   "--min-drawings", "0.9", "--max-failed", "0")
+    assert r.returncode == 1 and "more than --max-failed 0" in r.stdout and "FAIL" in r.stdout
+    r = run_script("--curvemesh", good, "--linear", str(listing), str(tmp_path / "broken.svg"),
+                   "--min-drawings", "0.9", "--max-failed", "1")
+    assert r.returncode == 0, r.stdout + r.stderr
 
     # The blue rect claimed green: 18 of 168 triangles disagree.
     r = run_script("--curvemesh", fake_curvemesh(tmp_path, "wrong"), "--json", str(out), str(tmp_path / "a.svg"))
@@ -579,6 +586,7 @@ def test_usage_errors(tmp_path):
     assert run_script().returncode == 2
     assert run_script("--curvemesh", str(tmp_path / "nothing"), "x.svg").returncode == 2
     assert run_script("--curvemesh", "/bin/true", "--min-agreement", "2", "x.svg").returncode == 2
+    assert run_script("--curvemesh", "/bin/true", "--max-failed", "-1", "x.svg").returncode == 2
     assert run_script("--curvemesh", "/bin/true", str(tmp_path / "missing.txt")).returncode == 2
 
 
@@ -592,3 +600,5 @@ def test_summary_fraction():
     assert ra.summarize(records, 0.99, 0.95, out=io.StringIO())
     assert not ra.summarize(records, 0.99, 0.96, out=io.StringIO())
     assert not ra.summarize([records[-1]], 0.99, 0.0, out=io.StringIO())
+    assert ra.summarize(records, 0.99, 0.95, out=io.StringIO(), max_failed=1)
+    assert not ra.summarize(records, 0.99, 0.95, out=io.StringIO(), max_failed=0)
