@@ -301,24 +301,34 @@ void coarsen(TriMesh& m, const mesh::Constraints& c, const Options& o, Stats& s)
   // with two curved edges, projects late vertices, takes the first certified centre: `mechorse`
   // ended at 158.9 and 16 of the collection's first 2,249 drawings above 20, 3 before; at three
   // quarters of it, `gis-computer_glenn_rolla_01` ended at 32.4.)
-  const auto collapse = [&](int from, int to) {
-    if (!curved) return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough);
+  // The curved pipeline's test of a collapse or swap of edge (a, b), shared by both: `operation`
+  // is done under the journal and kept when `worst_after()` (the curved_energy of what it made)
+  // is at most the curved stop energy; else it is taken back (the rollback counts as a change of
+  // both ends' stars) and done again if `worst_before()` (what it replaced, read after the
+  // rollback) was as bad.
+  const auto curved_test = [&](int a, int b, const auto& operation, const auto& worst_after, const auto& worst_before) {
     m.open_journal();
-    if (!mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough)) {
+    if (!operation()) {
       m.commit();
       return false;
     }
-    const double after = star_curved(to);
+    const double after = worst_after();
     if (after <= o.curved_stop_amips) {
       m.commit();
       return true;
     }
     m.rollback();
     ++clock;
-    star_changed(from, true);
-    star_changed(to, true);
-    if (after > std::max(star_curved(from), star_curved(to))) return false;
-    return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough);  // as before
+    star_changed(a, true);
+    star_changed(b, true);
+    return after <= worst_before() && operation();
+  };
+  const auto collapse = [&](int from, int to) {
+    const auto operation = [&] { return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough); };
+    if (!curved) return operation();
+    return curved_test(
+        from, to, operation, [&] { return star_curved(to); },
+        [&] { return std::max(star_curved(from), star_curved(to)); });
   };
   for (int round = 0; round < o.coarsening_rounds; ++round) {
     const long round_start = ++clock;
@@ -363,30 +373,20 @@ void coarsen(TriMesh& m, const mesh::Constraints& c, const Options& o, Stats& s)
     // before its first swap pass and 36.8 after it, and ended at 28.2. (The same test on the
     // smoothing moves cost 7.5 % more instructions on `old_truck` and changed no tail.)
     const auto swap = [&](int a, int b, int t) {
-      if (!curved) return mesh::swap_edge(m, a, b, 0, t);
+      const auto operation = [&] { return mesh::swap_edge(m, a, b, 0, t); };
+      if (!curved) return operation();
+      std::array<int, 2> opposite{-1, -1};  // the corners off (a, b): the new diagonal
       const std::vector<int> old = m.edge_triangles(a, b);
-      std::array<int, 2> opposite{-1, -1};  // the new diagonal
       for (std::size_t k = 0; k < old.size() && k < 2; ++k)
         for (int v : m.triangle(old[k]))
           if (v != a && v != b) opposite[k] = v;
-      m.open_journal();
-      if (!mesh::swap_edge(m, a, b, 0, t)) {
-        m.commit();
-        return false;
-      }
-      double after = 0;
-      for (int u : m.edge_triangles(opposite[0], opposite[1])) after = std::max(after, curved_energy(m, c, u));
-      if (after <= o.curved_stop_amips) {
-        m.commit();
-        return true;
-      }
-      m.rollback();
-      ++clock;
-      star_changed(a, true);
-      star_changed(b, true);
-      double before = 0;
-      for (int u : m.edge_triangles(a, b)) before = std::max(before, curved_energy(m, c, u));
-      return after <= before && mesh::swap_edge(m, a, b, 0, t);
+      const auto worst_on = [&](int x, int y) {
+        double worst = 0;
+        for (int u : m.edge_triangles(x, y)) worst = std::max(worst, curved_energy(m, c, u));
+        return worst;
+      };
+      return curved_test(
+          a, b, operation, [&] { return worst_on(opposite[0], opposite[1]); }, [&] { return worst_on(a, b); });
     };
     s.swaps += swap_pass(
         m, [&](int a, int b) { return near[a] && near[b]; }, swap,
