@@ -120,6 +120,7 @@ PYBIND11_MODULE(_curvemesh, m) {
       .def_readwrite("edge_length_rel", &curvemesh::Parameters::edge_length_rel, "-l, --edge-length")
       .def_readwrite("min_edge_length_rel", &curvemesh::Parameters::min_edge_length_rel, "--min-edge-length")
       .def_readwrite("junction_angle_deg", &curvemesh::Parameters::junction_angle_deg, "--junction-angle")
+      .def_readwrite("features", &curvemesh::Parameters::features, "false: --no-features")
       .def_readwrite("box_margin_rel", &curvemesh::Parameters::box_margin_rel, "--box-margin")
       .def_readwrite("max_iterations", &curvemesh::Parameters::max_iterations, "--max-iterations")
       .def_readwrite("stop_amips", &curvemesh::Parameters::stop_amips, "--stop-amips")

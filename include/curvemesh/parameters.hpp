@@ -22,6 +22,8 @@ struct CURVEMESH_API Parameters {
   double edge_length_rel = 1.0 / 20;  // --edge-length: l, the target edge length
   double min_edge_length_rel = 1e-4;  // --min-edge-length: l_m; curvature above α / l_m is secondary
   double junction_angle_deg = 10.0;   // --junction-angle: primary pieces sharing an end meet at least at this (chords and tangents)
+  bool features = true;               // --no-features (false): no piece is primary; every curve is kept within ε by
+                                      // straight secondary segments, as TriWild meshes a drawing without a feature file
   // §4.1: the meshed box and the linear optimization's stop.
   double box_margin_rel = 0.05;  // --box-margin: the box grows the drawing's bounds by this on every side
   int max_iterations = 80;       // --max-iterations: optimization passes at most

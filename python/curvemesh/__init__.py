@@ -12,7 +12,8 @@ arrays, as files, or as a meshio mesh.
 Options are the command line's long options with "_" for "-" (``mu``, ``epsilon``, ``eps_m``,
 ``edge_length``, ``min_edge_length``, ``min_angle``, ``junction_angle``, ``linear``,
 ``max_iterations``, ``stop_amips``, ``box_margin``, ``curved_stop_amips``,
-``max_curved_passes``); lengths are relative to the diagonal of the drawing's bounding box.
+``max_curved_passes``), and ``features=False`` for ``--no-features``; lengths are relative to
+the diagonal of the drawing's bounding box.
 
 Errors: an unreadable drawing or an invalid option value raises ValueError with the message the
 command line prints; an unknown option or a value of the wrong type raises TypeError; a file
@@ -42,6 +43,7 @@ _OPTIONS = {
     "min_edge_length": ("min_edge_length_rel", float, "--min-edge-length"),
     "min_angle": ("alpha_deg", float, "--min-angle"),
     "junction_angle": ("junction_angle_deg", float, "--junction-angle"),
+    "features": ("features", bool, "--no-features"),
     "linear": ("linear", bool, "--linear"),
     "max_iterations": ("max_iterations", int, "--max-iterations"),
     "stop_amips": ("stop_amips", float, "--stop-amips"),
@@ -264,9 +266,9 @@ def mesh(svg, **options):
         mu, epsilon, eps_m, edge_length, min_edge_length, min_angle, junction_angle, linear,
         max_iterations, stop_amips, box_margin, curved_stop_amips, max_curved_passes
 
-    (see curvemesh.OPTIONS for their defaults). Raises ValueError with the command line's message
-    when the drawing cannot be read or an option's value is invalid, TypeError for an unknown
-    option.
+    and features (False is --no-features); see curvemesh.OPTIONS for their defaults. Raises
+    ValueError with the command line's message when the drawing cannot be read or an option's
+    value is invalid, TypeError for an unknown option.
     """
     parameters = _parameters("mesh", options)
     if _is_svg_text(svg):

@@ -6,6 +6,7 @@ namespace curvemesh::features {
 struct Lengths {
   double d = 1, mu = 0, epsilon = 0, eps_m = 0, edge = 0, min_edge = 0;
   double alpha_rad = 0, junction_angle_rad = 0;
+  bool features = true;  // false: every piece is secondary (--no-features)
 };
 
 }  // namespace curvemesh::features

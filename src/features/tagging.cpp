@@ -111,8 +111,9 @@ void tag_primary_secondary(Discretized& d, const Lengths& len) {
   const int n = static_cast<int>(d.pieces.size());
   std::vector<Box> boxes;
   boxes.reserve(n);
+  // With --no-features nothing is primary, so nothing need be separated.
   for (int i = 0; i < n; ++i)
-    if (!d.pieces[i].unfit) boxes.push_back(box_of(d.pieces[i].a, d.pieces[i].b, 0.5 * len.mu, i));
+    if (!d.pieces[i].unfit && len.features) boxes.push_back(box_of(d.pieces[i].a, d.pieces[i].b, 0.5 * len.mu, i));
 
   std::vector<std::vector<int>> conflicts(n);
   CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
@@ -133,7 +134,7 @@ void tag_primary_secondary(Discretized& d, const Lengths& len) {
     const CurveSection& section = d.sections[s];
     for (int i = section.first_piece; i < section.first_piece + section.piece_count; ++i) {
       Piece& p = d.pieces[i];
-      bool primary = !p.unfit;
+      bool primary = !p.unfit && len.features;
       if (primary)
         for (const int j : conflicts[i])
           if (decided[j] && d.pieces[j].kind == Kind::primary) {

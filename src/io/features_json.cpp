@@ -43,7 +43,8 @@ void add_features_json(const features::Features& f, nlohmann::ordered_json& j) {
                      {"epsilon", l.epsilon}, {"eps_m", l.eps_m},
                      {"l", l.edge},       {"l_m", l.min_edge},
                      {"alpha_deg", l.alpha_rad * 180 / std::numbers::pi},
-                     {"junction_angle_deg", l.junction_angle_rad * 180 / std::numbers::pi}};
+                     {"junction_angle_deg", l.junction_angle_rad * 180 / std::numbers::pi},
+                     {"features", l.features}};
   j["counts"] = {{"sections", f.sections.size()},       {"primary_sections", primary},
                  {"primary_edges", primary_edges},      {"secondary_segments", f.segments.size()},
                  {"feature_points", f.points.size()},   {"degenerate_curves", f.degenerate_curves},

@@ -4,7 +4,7 @@
 //                 "straight": bool, "polyline": [[x, y], ...], "ts": [...]}],
 //   "segments": [{"a": [x, y], "b": [x, y], "curve": i, "t": [t0, t1]}],   (secondary, simplified)
 //   "feature_points": [[x, y]], "feature_point_sources": [i],   (i indexes "sources")
-//   "parameters": {"d", "mu", "epsilon", "eps_m", "l", "l_m", "alpha_deg", "junction_angle_deg"},
+//   "parameters": {"d", "mu", "epsilon", "eps_m", "l", "l_m", "alpha_deg", "junction_angle_deg", "features"},
 //   "counts": {...}
 #include <nlohmann/json.hpp>
 

@@ -69,6 +69,7 @@ Resolved resolve(const Parameters& p, double diagonal) {
   l.min_edge = p.min_edge_length_rel * r.d;
   l.alpha_rad = radians(p.alpha_deg);
   l.junction_angle_rad = radians(p.junction_angle_deg);
+  l.features = p.features;
   r.triangulate.box_margin = std::max(p.box_margin_rel, 0.0) * r.d;
   r.optimize.edge_length = l.edge;
   r.optimize.min_edge_length = l.min_edge;

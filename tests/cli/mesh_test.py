@@ -71,6 +71,24 @@ for example in sorted(os.listdir(examples)):
                   report.get("lines", {}).get("primary", 0) + report.get("lines", {}).get("secondary", 0) > 0,
                   str(report.get("lines")))
 
+# --no-features: no primary line, only secondary ones (the stats say the same of the features),
+# certified like any other mesh; the same drawing has primary lines by default.
+example = os.path.join(examples, "overlapping-shapes.svg")
+r, out, stats = mesh("no-features", example, "--no-features")
+check("--no-features: exit 0", r.returncode == 0, r.stderr)
+if r.returncode == 0:
+    report = certify("--no-features", out)
+    lines = report.get("lines", {})
+    check("--no-features: no primary line, secondary lines", lines.get("primary", 0) == 0 and lines.get("secondary", 0) > 0,
+          str(lines))
+    with open(stats) as f:
+        features = json.load(f).get("features", {})
+    check("--no-features: the stats count no primary section", features.get("primary_sections") == 0
+          and features.get("secondary_segments", 0) > 0, str(features))
+    with_features = certify("with-features", mesh("with-features", example)[1])
+    check("with features the same drawing has primary lines", with_features.get("lines", {}).get("primary", 0) > 0,
+          str(with_features.get("lines")))
+
 # Target edge length: a unit square with -l 0.05 has mean edge length within 25 % of 0.05 d.
 square = write("square.svg", '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 1 1">'
                               '<rect width="1" height="1" fill="none" stroke="black"/></svg>')

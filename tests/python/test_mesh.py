@@ -73,6 +73,17 @@ def test_every_option_as_on_the_command_line(linear, examples, run_cli, tmp_path
     assert len(default.triangles) != len(m.triangles)  # the options did change the mesh
 
 
+def test_no_features_is_the_command_lines(examples, run_cli, tmp_path):
+    svg = examples / "overlapping-shapes.svg"
+    cli = cli_files(run_cli, tmp_path, svg, "--no-features", "-l", "0.1")
+    m = curvemesh.mesh(svg, features=False, edge_length=0.1)
+    assert_same_files(cli, python_files(m, tmp_path))
+    assert "primary" not in set(m.line_tags) and "secondary" in set(m.line_tags)
+    assert "primary" in set(curvemesh.mesh(svg, edge_length=0.1).line_tags)
+    with pytest.raises(TypeError):
+        curvemesh.mesh(svg, features=0)
+
+
 def test_svg_text_and_path_inputs(examples, run_cli, tmp_path):
     svg = examples / "transforms-and-use.svg"
     cli = cli_files(run_cli, tmp_path, svg, "-l", "0.1")
@@ -178,7 +189,7 @@ def test_version(run_cli):
 def test_options_and_defaults():
     assert set(curvemesh.OPTIONS) == {
         "mu", "epsilon", "eps_m", "edge_length", "min_edge_length", "min_angle", "junction_angle", "linear",
-        "max_iterations", "stop_amips", "box_margin", "curved_stop_amips", "max_curved_passes",
+        "max_iterations", "stop_amips", "box_margin", "curved_stop_amips", "max_curved_passes", "features",
     }
     assert curvemesh.OPTIONS["edge_length"] == 0.05 and curvemesh.OPTIONS["linear"] is False
 

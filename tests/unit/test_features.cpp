@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "features/features.hpp"
@@ -180,6 +181,34 @@ TEST(Features, SecondaryStaysWithinEpsilon) {
       EXPECT_LE(geometry::closest_point(c, p).distance, f.lengths.epsilon);
     }
   }
+}
+
+TEST(Features, WithoutFeaturesEveryCurveIsSecondaryAndKeptWithinEpsilon) {
+  // Crossing curves that would be primary almost everywhere: with --no-features none is, and
+  // every point of every curve is within ε of a segment standing for that curve, and back.
+  const auto soup = soup_of({{{0, 0}, {30, 80}, {70, -40}, {100, 50}},
+                             CubicBezier::line({0, 50}, {100, 50}),
+                             {{50, 0}, {0, 40}, {100, 60}, {50, 100}}});
+  pipeline::Parameters p;
+  p.features = false;
+  const auto f = process(soup, p);
+  EXPECT_GT(count(process(soup), Kind::primary), 0);
+  EXPECT_EQ(count(f, Kind::primary), 0);
+  ASSERT_FALSE(f.segments.empty());
+  for (int c = 0; c < static_cast<int>(soup.curves.size()); ++c) {
+    const CubicBezier& curve = soup.curves[c].bezier;
+    for (int i = 0; i <= 200; ++i) {
+      const Vec2 q = curve.eval(i / 200.0);
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const auto& seg : f.segments)
+        if (seg.curve == c) nearest = std::min(nearest, point_segment_distance(q, seg.a, seg.b));
+      EXPECT_LE(nearest, f.lengths.epsilon) << "curve " << c << " at t = " << i / 200.0;
+    }
+  }
+  for (const auto& seg : f.segments)
+    for (int i = 0; i <= 10; ++i)
+      EXPECT_LE(geometry::closest_point(soup.curves[seg.curve].bezier, seg.a + (seg.b - seg.a) * (i / 10.0)).distance,
+                f.lengths.epsilon);
 }
 
 TEST(Features, DegenerateAndStraightCurves) {
