@@ -49,15 +49,19 @@ struct BatchArgs {
   MeshForwarding mesh;
 };
 
-// The mesh options as the user gave them, to pass on to each child.
+// The mesh options as the user gave them, to pass on to each child: a flag (--linear,
+// --no-features) by its name, an option with its last value.
 std::vector<std::string> forwarded_arguments(const MeshForwarding& m) {
   std::vector<std::string> out;
-  if (m.parameters.linear) out.push_back("--linear");
-  for (const CLI::Option* o : m.options)
-    if (o->count() > 0 && !o->results().empty() && o->get_expected_min() > 0) {
+  for (const CLI::Option* o : m.options) {
+    if (o->count() == 0) continue;
+    if (o->get_expected_min() == 0) {
+      out.push_back(o->get_name());
+    } else if (!o->results().empty()) {
       out.push_back(o->get_name());
       out.push_back(o->results().back());
     }
+  }
   return out;
 }
 

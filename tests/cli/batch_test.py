@@ -251,6 +251,15 @@ check("forwarding: -l 0.3 gives fewer triangles than the default",
       all((coarse.get(p, {}).get("triangles") or 1e9) < (fine[p].get("triangles") or 0) for p in coarse) and coarse,
       [(coarse[p].get("triangles"), fine.get(p, {}).get("triangles")) for p in coarse])
 
+first_drawing = os.path.join(inputs, example_names[0])
+nofeat_out = os.path.join(root, "out-no-features")
+r, _ = run("batch", first_drawing, "-o", nofeat_out, "--no-features")
+nofeat = read_report(os.path.join(nofeat_out, "report.jsonl"))
+check("forwarding: --no-features (a flag) leaves no curved triangle where the default curves some",
+      [x.get("status") for x in nofeat] == ["ok"] and nofeat[0].get("curved_triangles") == 0
+      and (first.get(first_drawing, {}).get("curved_triangles") or 0) > 0,
+      (nofeat, first.get(first_drawing)))
+
 # --- curvemesh report ----------------------------------------------------------------------------
 html = os.path.join(root, "report.html")
 r, _ = run("report", os.path.join(out, "report.jsonl"), "--html", html)
