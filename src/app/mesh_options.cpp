@@ -32,7 +32,7 @@ void add_feature_options(CLI::App& cmd, pipeline::Parameters& p) {
          "primary pieces sharing an endpoint stay primary when they meet at least at this angle, both their chords and their curves' tangents there (deg)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 180.0));
-  cmd.add_flag("!--no-features", p.features,
+  cmd.add_flag_callback("--no-features", [&p] { p.features = false; },
                "no feature curves: every curve is secondary, kept within epsilon by straight segments and "
                "followed by no edge, as TriWild meshes a drawing without a feature file (its linear mode, "
                "there with epsilon 0.001); the curved mesh then has straight edges only");
