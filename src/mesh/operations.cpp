@@ -395,7 +395,7 @@ bool collapse_edge(TriMesh& m, const Constraints& c, int from, int to, double en
   return collapse_checked(m, c, from, to, energy_bound, &also);
 }
 
-bool swap_edge(TriMesh& m, int a, int b, double energy_bound, int left_hint) {
+bool swap_edge(TriMesh& m, int a, int b, double energy_bound, int left_hint, std::array<int, 2>* rewritten) {
   if (m.feature(a, b)) return false;
   const auto has_directed = [&](const Triangle& tri) {
     return (tri[0] == a && tri[1] == b) || (tri[1] == a && tri[2] == b) || (tri[2] == a && tri[0] == b);
@@ -419,6 +419,7 @@ bool swap_edge(TriMesh& m, int a, int b, double energy_bound, int left_hint) {
   if (m.orientation(n1[0], n1[1], n1[2]) <= 0 || m.orientation(n2[0], n2[1], n2[2]) <= 0) return false;
   m.set_triangle(t1, n1);
   m.set_triangle(t2, n2);
+  if (rewritten) *rewritten = {t1, t2};
   return true;
 }
 

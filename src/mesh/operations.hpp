@@ -9,6 +9,7 @@
 //  3. every primary edge covers a curve interval turning at most α;
 //  4. primary vertices move only along their curve, boundary vertices only along their side,
 //     fixed vertices never move and are never removed.
+#include <array>
 #include <functional>
 
 #include "mesh/constraints.hpp"
@@ -60,8 +61,11 @@ bool collapse_keeps_edges_short(const TriMesh& m, int from, int to, const Target
 // Replaces the diagonal (a, b) of the quad formed by its two triangles by the other diagonal,
 // if the largest AMIPS energy of the two triangles decreases or stays at most energy_bound.
 // Tagged edges never swap. `left_hint` may name the triangle with directed edge a -> b, which
-// saves a walk round a's star; it is checked, and any other value is ignored.
-bool swap_edge(TriMesh& mesh, int a, int b, double energy_bound = 0, int left_hint = -1);
+// saves a walk round a's star; it is checked, and any other value is ignored. On a swap,
+// `rewritten` (when given) receives the two triangle slots that now hold the new diagonal's
+// triangles: the same slots that held the old ones.
+bool swap_edge(TriMesh& mesh, int a, int b, double energy_bound = 0, int left_hint = -1,
+               std::array<int, 2>* rewritten = nullptr);
 
 // One Newton step (with line search) on the summed AMIPS energy of v's triangles: in the plane
 // for free and secondary vertices, along the curve for primary ones (App. A), along the side

@@ -239,6 +239,49 @@ TEST(MeshOperations, ASwapHintIsCheckedAndChangesNothingElse) {
   EXPECT_GT(swapped, 100);
 }
 
+// The slots a swap names are the two triangles of the new diagonal, and they were the old
+// diagonal's: after a rollback they hold the old triangles again. (The coarsening reads the
+// energies before and after a swap from them.) A refused swap names nothing.
+TEST(MeshOperations, ASwapNamesTheSlotsOfBothDiagonals) {
+  const auto sorted = [](std::vector<int> v) {
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  int swapped = 0, refused = 0;
+  for (unsigned seed : {4u, 5u}) {
+    Fixture f = make_grid(8, seed);
+    for (const auto& e : edges_of(f.mesh)) {
+      const int a = e[0], b = e[1];
+      const std::vector<int> old = sorted(f.mesh.edge_triangles(a, b));
+      std::array<int, 3> opposite{};  // the corner off (a, b) of each old triangle
+      for (std::size_t k = 0; k < old.size(); ++k)
+        for (int v : f.mesh.triangle(old[k]))
+          if (v != a && v != b) opposite[k] = v;
+      TriMesh m = f.mesh;
+      std::array<int, 2> slots{-1, -1};
+      m.open_journal();
+      if (!swap_edge(m, a, b, 1e9, -1, &slots)) {
+        m.commit();
+        EXPECT_EQ(slots, (std::array<int, 2>{-1, -1}));
+        ++refused;
+        continue;
+      }
+      ++swapped;
+      ASSERT_EQ(old.size(), 2u);
+      EXPECT_EQ(sorted({slots[0], slots[1]}), old) << a << " - " << b;
+      EXPECT_EQ(sorted(m.edge_triangles(opposite[0], opposite[1])), old) << a << " - " << b;
+      EXPECT_TRUE(m.edge_triangles(a, b).empty());
+      const std::array<mesh::Triangle, 2> before{f.mesh.triangle(slots[0]), f.mesh.triangle(slots[1])};
+      m.rollback();
+      EXPECT_EQ(m.triangle(slots[0]), before[0]);
+      EXPECT_EQ(m.triangle(slots[1]), before[1]);
+      EXPECT_EQ(sorted(m.edge_triangles(a, b)), old);
+    }
+  }
+  EXPECT_GT(swapped, 50);
+  EXPECT_GT(refused, 10);
+}
+
 TEST(MeshOperations, RolledBackOperationsLeaveTheMeshAsItWas) {
   // Runs of random committed operations under a journal: rolled back, the mesh is the one before
   // (every array and tag compared); committed, the changes stay.
