@@ -9,11 +9,14 @@
 //   smooth.cpp           step 4: smoothing of corners and centres, projection onto curves;
 //   local_operations.cpp step 4: swaps, collapses and splits on the curved mesh; step 6:
 //                        coarsening along the curves;
-//   fit.cpp              step 5: edges that could not follow their curve, the distances left.
+//   fit.cpp              step 5: edges that could not follow their curve, the distances left;
+//   guard.cpp            steps 4 and 5: the moves that may raise the worst energy, kept only if
+//                        no worse (after a repair by step 4's operations).
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -175,6 +178,27 @@ class Builder {
   void coarsen();
   void settle_vertex(int v, const std::vector<int>& triangles);
   bool place_triangle(int t, double* known_energy = nullptr);
+
+  // ----- guard.cpp: steps 4 and 5, moves kept only if no worse -------------------------------
+  // Everything the stage holds, to put back a move together with the operations that repaired it.
+  struct State {
+    CurvedMesh out;
+    std::vector<int> vertex_node;
+    std::unordered_map<std::uint64_t, int> first_node;
+    std::unordered_map<std::uint64_t, bool> curved;
+    std::vector<double> scaled;
+    std::unordered_set<std::uint64_t> fitted;
+    Stats stats;
+  };
+  State save_state() const;
+  void restore_state(State&& saved);
+  // The vertices within `rings` edges of the centres; the alive triangles at some of vertices;
+  // their worst energy (exact below `bound`, at least `bound` otherwise).
+  std::vector<int> vertices_near(const std::vector<int>& centres, int rings) const;
+  std::vector<int> triangles_at(const std::vector<int>& vertices) const;
+  double worst_of(const std::vector<int>& triangles, double bound = std::numeric_limits<double>::infinity()) const;
+  bool keep_unless_worse(const std::vector<int>& centres, const std::function<bool()>& move,
+                         const std::function<void()>& undo);
 
   // ----- fit.cpp: step 5 ------------------------------------------------------------------------
   void fit(int a, int b);

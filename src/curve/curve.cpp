@@ -64,16 +64,26 @@ void Builder::run() {
   for (std::size_t t = 0; t < out_.triangles.size(); ++t)
     s_.max_amips_before_smoothing = std::max(s_.max_amips_before_smoothing, energy(static_cast<int>(t)));
   // Primary vertices the linear optimization could not bring onto their curve (Fig. 8): now
-  // that edges bend, they may get there.
-  for (int v = 0; v < m.vertex_count(); ++v)
-    if (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) s_.late_projections += project(v);
+  // that edges bend, they may get there. A projection is kept only if nothing around it ends
+  // worse (project): one refused is tried again after the smoothing and after the operations,
+  // which change what is around it.
+  const auto project_late = [&] {
+    for (int v = 0; v < m.vertex_count(); ++v)
+      if (!m.triangles_of(v).empty() && m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve)
+        s_.late_projections += project(v);
+  };
+  project_late();
   smooth();
-  // Step 5: the primary edges still straight. Bringing one onto its curve may leave a poor
-  // (certified) triangle, which the operations below then improve.
-  for (const auto& [edge, f] : m.sorted_features())
-    if (f.kind == EdgeKind::primary && !curved_.at(mesh::edge_key(edge[0], edge[1])) && followable(m, edge[0], edge[1]))
-      fit(edge[0], edge[1]);
+  project_late();
+  // Step 5: the primary edges still straight, on their curve where nothing around them ends
+  // worse, else fitted (fit). An earlier edge's repair may have removed a later one.
+  for (const auto& [edge, f] : m.sorted_features()) {
+    if (f.kind != EdgeKind::primary || !m.feature(edge[0], edge[1])) continue;
+    const auto it = curved_.find(mesh::edge_key(edge[0], edge[1]));
+    if (it != curved_.end() && !it->second && followable(m, edge[0], edge[1])) fit(edge[0], edge[1]);
+  }
   improve();
+  project_late();
   coarsen();
   finish();
   std::vector<double> amips(out_.triangles.size());

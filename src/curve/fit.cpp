@@ -23,7 +23,9 @@ Vec2 edge_point(const Vec2& p0, const Vec2& p1, const Vec2& p2, const Vec2& p3, 
 
 // §4.2 step 5 for primary edge (a, b), whose triangles cannot be certified with the edge on its
 // curve. First the edge is put on its curve and the centre nodes and the free opposite corners
-// move (compass search on badness) until both triangles are certified; failing that, the edge's
+// move (compass search on badness) until both triangles are certified, kept only if nothing
+// around the edge ends worse than it was, if need be after step 4's operations
+// (keep_unless_worse); failing that, the edge's
 // two inner nodes are fitted: the largest blend s·(curve) + (1 − s)·(chord) with both triangles
 // certified and within the stop energy (or the straight edge's), s by bisection (the
 // least-squares fit to the curve along the one direction in which the straight edge is known to
@@ -52,18 +54,30 @@ void Builder::fit(int a, int b) {
   };
 
   // On the curve, with the centres and the free corners moved.
-  curved_[key] = true;
-  place_on_curve(lo, hi);
-  for (int t : triangles) choose_centre_of(t);
-  for (int v : movable) {
-    const Vec2 x = search_corner(v, [&](int t, double) { return badness(t); });
-    place_corner(v, x);
-    m.set_position(v, x);  // the next corner's orientation checks see this one where it is now
-  }
-  for (int t : triangles) choose_centre_of(t);
-  if (certify_all(touched)) return;
-  undo();
-  curved_[key] = false;
+  std::vector<double> scaled_before;
+  for (int t : touched) scaled_before.push_back(scaled_[t]);
+  const auto take_back = [&] {
+    m.rollback();  // the corners' positions
+    restore(saved);
+    for (std::size_t k = 0; k < touched.size(); ++k) scaled_[touched[k]] = scaled_before[k];
+    curved_[key] = false;
+  };
+  const auto on_curve = [&] {
+    m.open_journal();
+    curved_[key] = true;
+    place_on_curve(lo, hi);
+    for (int t : triangles) choose_centre_of(t);
+    for (int v : movable) {
+      const Vec2 x = search_corner(v, [&](int t, double) { return badness(t); });
+      place_corner(v, x);
+      m.set_position(v, x);  // the next corner's orientation checks see this one where it is now
+    }
+    for (int t : triangles) choose_centre_of(t);
+    if (certify_all(touched)) return true;
+    take_back();
+    return false;
+  };
+  if (keep_unless_worse({a, b}, on_curve, take_back)) return;
 
   // The fit: the largest blend towards the curve with both triangles certified and no worse
   // than the stop energy or the straight edge's (the bare validity limit would leave an element

@@ -165,8 +165,11 @@ int Builder::smooth_curve_corner(int v) {
 
 // Moves primary vertex v, still off its curve, to its closest point on the curve (between its
 // two curve neighbours); its edges along the curve become curved where their other end is on
-// the curve too. Kept only if the corners' triangles stay counter-clockwise and every changed
-// triangle is certified.
+// the curve too. Made only if the corners' triangles stay counter-clockwise and v's triangles
+// are certified; where v's triangles end above max(stop energy, the worst around v before), v's
+// neighbours and the centres around them are smoothed towards the new place (twice at most).
+// Kept only if nothing around ends worse, if need be after step 4's operations
+// (keep_unless_worse); otherwise v waits off its curve for a later attempt.
 int Builder::project(int v) {
   TriMesh& m = out_.linear;
   const mesh::VertexTag tag0 = m.tag(v);
@@ -178,24 +181,41 @@ int Builder::project(int v) {
   const double t = std::clamp(curve.t0 + cp.t * (curve.t1 - curve.t0), lo + margin, hi - margin);
   const Vec2 p = curve.eval(t);
   if (!mesh::star_valid_at(m, v, p)) return 0;
-  const auto& star = m.triangles_of(v);
-  const Snapshot saved = snapshot(star);
-  const mesh::EdgeFeature fx = *m.feature(v, n.x), fy = *m.feature(v, n.y);
-  mesh::VertexTag tag = tag0;
-  tag.on_curve = true;
-  m.set_tag(v, tag);
-  for (int w : {n.x, n.y}) curved_[mesh::edge_key(v, w)] = followable(m, v, w);
-  place_on_curve_at(v, n, t);
-  if (!certify_all(star)) {
+  const std::vector<int> neighbours = m.neighbours(v);
+  const std::vector<int> region = triangles_at(vertices_near({v}, 1));  // what the move changes
+  const double allowed = std::max(o_.stop_amips, worst_of(region));
+  std::vector<double> scaled_before;
+  for (int u : region) scaled_before.push_back(scaled_[u]);
+  const Snapshot saved = snapshot(region);
+  const std::array<std::uint64_t, 2> curve_edges{mesh::edge_key(v, n.x), mesh::edge_key(v, n.y)};
+  const std::array<bool, 2> curved_before{curved_.at(curve_edges[0]), curved_.at(curve_edges[1])};
+  const int moves_before = s_.smoothing_moves;
+  const auto undo = [&] {
+    m.rollback();  // v's tag and position, its curve edges' parameters, the neighbours' positions
     restore(saved);
-    m.set_tag(v, tag0);
-    m.set_feature(v, n.x, fx);
-    m.set_feature(v, n.y, fy);
-    for (int w : {n.x, n.y}) curved_[mesh::edge_key(v, w)] = false;
-    return 0;
-  }
-  m.set_position(v, p);
-  return 1;
+    for (std::size_t k = 0; k < region.size(); ++k) scaled_[region[k]] = scaled_before[k];
+    for (int k = 0; k < 2; ++k) curved_[curve_edges[k]] = curved_before[k];
+    s_.smoothing_moves = moves_before;
+  };
+  const auto move = [&] {
+    m.open_journal();
+    mesh::VertexTag tag = tag0;
+    tag.on_curve = true;
+    m.set_tag(v, tag);
+    for (int w : {n.x, n.y}) curved_[mesh::edge_key(v, w)] = followable(m, v, w);
+    place_on_curve_at(v, n, t);
+    m.set_position(v, p);  // the neighbours' searches see v where it is now
+    if (!certify_all(m.triangles_of(v))) {
+      undo();
+      return false;
+    }
+    for (int round = 0; round < 2 && worst_of(region) > allowed; ++round) {
+      for (int w : neighbours) move_corner(w);
+      for (int u : region) smooth_centre(u);
+    }
+    return true;
+  };
+  return keep_unless_worse({v}, move, undo) ? 1 : 0;
 }
 
 int Builder::smooth_corner(int v) {

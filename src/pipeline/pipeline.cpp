@@ -66,6 +66,8 @@ Json curve_json(const curve::Stats& s, double d) {
           {"coarsening_collapses", s.coarsening_collapses},
           {"curved_swaps", s.curved_swaps},
           {"late_projections", s.late_projections},
+          {"repaired_moves", s.repaired_moves},
+          {"refused_moves", s.refused_moves},
           {"max_amips", s.max_amips},
           {"mean_amips", s.mean_amips},
           {"smallest_wedge_deg", s.wedges.smallest_wedge * 180 / std::numbers::pi},

@@ -1,0 +1,109 @@
+// Steps 4 and 5: the two moves that can raise the worst energy of what they change — a vertex
+// brought onto its curve late, an edge put on its curve in step 5 — kept only when the triangles
+// around them end no worse than they were (above the stop energy), if need be after the
+// operations of step 4 have repaired them; otherwise taken back, operations and all.
+#include <functional>
+
+#include "curve/builder.hpp"
+
+namespace curvemesh::curve::detail {
+
+std::vector<int> Builder::vertices_near(const std::vector<int>& centres, int rings) const {
+  const TriMesh& m = out_.linear;
+  std::vector<int> near = centres;
+  std::sort(near.begin(), near.end());
+  near.erase(std::unique(near.begin(), near.end()), near.end());
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<int> more = near;
+    for (int v : near)
+      for (int w : m.neighbours(v)) more.push_back(w);
+    std::sort(more.begin(), more.end());
+    more.erase(std::unique(more.begin(), more.end()), more.end());
+    near = std::move(more);
+  }
+  return near;
+}
+
+std::vector<int> Builder::triangles_at(const std::vector<int>& vertices) const {
+  const TriMesh& m = out_.linear;
+  std::vector<int> triangles;
+  for (int v : vertices) triangles.insert(triangles.end(), m.triangles_of(v).begin(), m.triangles_of(v).end());
+  std::sort(triangles.begin(), triangles.end());
+  triangles.erase(std::unique(triangles.begin(), triangles.end()), triangles.end());
+  return triangles;
+}
+
+double Builder::worst_of(const std::vector<int>& triangles, double bound) const {
+  double worst = 0;
+  for (int t : triangles)
+    if ((worst = std::max(worst, energy(t, bound))) >= bound) break;
+  return worst;
+}
+
+Builder::State Builder::save_state() const {
+  return {out_, vertex_node_, first_node_, curved_, scaled_, fitted_, s_};
+}
+
+void Builder::restore_state(State&& saved) {
+  out_ = std::move(saved.out);
+  vertex_node_ = std::move(saved.vertex_node);
+  first_node_ = std::move(saved.first_node);
+  curved_ = std::move(saved.curved);
+  scaled_ = std::move(saved.scaled);
+  fitted_ = std::move(saved.fitted);
+  s_ = saved.stats;
+}
+
+// `move()` makes the move under the mesh's journal (left open) and returns true, or takes itself
+// back and returns false; `undo()` takes a made move back (rolling the journal back). Judged on
+// the triangles at the centres and their neighbours (what the move changes) and on those within
+// three rings (what a repair may change): each at most max(stop energy, its worst before).
+// When the move alone is above, it is taken back, everything the stage holds is saved, and the
+// move is made again and followed by up to four rounds of repair: step 4's operations on the
+// triangles there above the stop energy (each kept only if it lowers the worst of what it
+// changes), the centres and their neighbours moved, the centres of the triangles smoothed. Still
+// above, the saved state comes back. (The mesh's journal has one level, which each operation
+// uses: hence the copy, made only for the few moves that need a repair.)
+bool Builder::keep_unless_worse(const std::vector<int>& centres, const std::function<bool()>& move,
+                                const std::function<void()>& undo) {
+  TriMesh& m = out_.linear;
+  const std::vector<int> around = vertices_near(centres, 1), wide = vertices_near(centres, 3);
+  const double bound_around = std::max(o_.stop_amips, worst_of(triangles_at(around)));
+  const double bound_wide = std::max(o_.stop_amips, worst_of(triangles_at(wide)));
+  const auto within = [&] {
+    const auto above = [](double x) { return std::nextafter(x, std::numeric_limits<double>::infinity()); };
+    return worst_of(triangles_at(around), above(bound_around)) <= bound_around &&
+           worst_of(triangles_at(wide), above(bound_wide)) <= bound_wide;
+  };
+  if (!move()) return false;
+  if (within()) {
+    m.commit();
+    return true;
+  }
+  undo();
+  State saved = save_state();
+  if (!move()) return false;  // it was made once from this very state
+  m.commit();
+  bool good = false;
+  for (int round = 0; round < 4 && !good; ++round) {
+    for (int t : triangles_at(wide))
+      if (m.alive(t) && energy(t) > o_.stop_amips) improve_triangle(t);
+    for (int c : centres) {
+      if (m.triangles_of(c).empty()) continue;
+      const std::vector<int> ring = m.neighbours(c);
+      move_corner(c);
+      for (int w : ring) move_corner(w);
+    }
+    for (int t : triangles_at(wide)) smooth_centre(t);
+    good = within();
+  }
+  if (good) {
+    ++s_.repaired_moves;
+    return true;
+  }
+  restore_state(std::move(saved));
+  ++s_.refused_moves;
+  return false;
+}
+
+}  // namespace curvemesh::curve::detail

@@ -1,0 +1,70 @@
+#!/usr/bin/env python3
+"""The curve stage's two moves that can raise the worst energy of what they change — a primary
+vertex brought onto its curve late, a straight primary edge put on its curve in step 5 — are
+kept only when the triangles around them end no worse than they were (above the stop energy),
+if need be after step 4's operations have repaired them, and are otherwise taken back.
+
+Three drawings of the collection exercise both outcomes: in `network_cloud_david_klan_01` and
+`ape_miele` moves are kept after a repair (`curve.repaired_moves`), in
+`fireman_enrique_meza_c_01` some are refused (`curve.refused_moves`), and the vertex stays off
+its curve, two primary edges left straight each. Each mesh is certified by the independent
+checker (tests/tools/msh_check.py) and every element is at most AMIPS 20 as it measures them;
+where nothing was refused, no primary edge is left straight; the curve stage ends no worse than
+it began (its worst energy at most max(20, the worst on entering step 4)).
+
+usage: guarded_moves_test.py CURVEMESH_BINARY [SVG_ROOT]
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import check, finish  # noqa: E402
+
+binary = sys.argv[1]
+root = sys.argv[2] if len(sys.argv) > 2 else "/usr/share/openclipart/svg"
+checker = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools", "msh_check.py")
+tmp = tempfile.TemporaryDirectory()
+
+drawings = [
+    "computer/network_cloud_david_klan_01.svg",
+    "unsorted/ape_miele.svg",
+    "people/fireman_enrique_meza_c_01.svg",
+]
+for d in drawings:
+    check(f"{d} is under {root} (Debian's openclipart-svg, installed by scripts/)", os.path.exists(os.path.join(root, d)))
+
+totals = {"repaired_moves": 0, "refused_moves": 0, "late_projections": 0}
+for drawing in drawings:
+    name = os.path.basename(drawing)
+    out, stats_path = os.path.join(tmp.name, name + ".msh"), os.path.join(tmp.name, name + ".json")
+    r = subprocess.run([binary, "mesh", os.path.join(root, drawing), "-o", out, "--stats", stats_path, "-q"],
+                       capture_output=True, text=True, timeout=600)
+    check(f"{name}: exit 0", r.returncode == 0, r.stderr[-600:])
+    if r.returncode != 0:
+        continue
+    curve = json.load(open(stats_path))["curve"]
+    for key in totals:
+        totals[key] += curve[key]
+    c = subprocess.run([sys.executable, checker, out, "--json"], capture_output=True, text=True, timeout=600)
+    check(f"{name}: independent checker accepts the mesh", c.returncode == 0, (c.stdout + c.stderr)[-600:])
+    report = json.loads(c.stdout) if c.returncode == 0 else {}
+    check(f"{name}: every element at most AMIPS 20 (checker)", report.get("max_amips", 1e9) <= 20,
+          report.get("max_amips"))
+    check(f"{name}: no worse than on entering step 4",
+          curve["max_amips"] <= max(20.0, curve["max_amips_before_smoothing"]),
+          f"{curve['max_amips']} after, {curve['max_amips_before_smoothing']} before")
+    if curve["refused_moves"] == 0:
+        check(f"{name}: nothing refused, no primary edge straight", curve["straight_primary_edges"] == 0,
+              curve["straight_primary_edges"])
+    else:
+        # A refused projection leaves its vertex off the curve: its two curve edges straight.
+        check(f"{name}: a refused move leaves straight edges", curve["straight_primary_edges"] > 0,
+              curve["straight_primary_edges"])
+
+check("some moves were kept after a repair by the operations", totals["repaired_moves"] > 0, totals)
+check("some moves were refused", totals["refused_moves"] > 0, totals)
+check("vertices were projected late", totals["late_projections"] > 0, totals)
+finish()
