@@ -57,7 +57,8 @@ void Builder::restore_state(State&& saved) {
 // `move()` makes the move under the mesh's journal (left open) and returns true, or takes itself
 // back and returns false; `undo()` takes a made move back (rolling the journal back). Judged on
 // the triangles at the centres and their neighbours (what the move changes) and on those within
-// three rings (what a repair may change): each at most max(stop energy, its worst before).
+// three rings (what a repair may change): each at most max(stop energy, its worst before), and
+// no more of the latter uncertified than before (a move may leave some for the repair).
 // When the move alone is above, it is taken back, everything the stage holds is saved, and the
 // move is made again and followed by up to four rounds of repair: step 4's operations on the
 // triangles there above the stop energy (each kept only if it lowers the worst of what it
@@ -70,9 +71,16 @@ bool Builder::keep_unless_worse(const std::vector<int>& centres, const std::func
   const std::vector<int> around = vertices_near(centres, 1), wide = vertices_near(centres, 3);
   const double bound_around = std::max(o_.stop_amips, worst_of(triangles_at(around)));
   const double bound_wide = std::max(o_.stop_amips, worst_of(triangles_at(wide)));
+  const auto uncertified = [&] {
+    int count = 0;
+    for (int t : triangles_at(wide)) count += scaled_[t] <= 0;
+    return count;
+  };
+  const int uncertified_before = uncertified();
   const auto within = [&] {
     const auto above = [](double x) { return std::nextafter(x, std::numeric_limits<double>::infinity()); };
-    return worst_of(triangles_at(around), above(bound_around)) <= bound_around &&
+    return uncertified() <= uncertified_before &&
+           worst_of(triangles_at(around), above(bound_around)) <= bound_around &&
            worst_of(triangles_at(wide), above(bound_wide)) <= bound_wide;
   };
   if (!move()) return false;

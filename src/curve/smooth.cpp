@@ -165,10 +165,10 @@ int Builder::smooth_curve_corner(int v) {
 
 // Moves primary vertex v, still off its curve, to its closest point on the curve (between its
 // two curve neighbours); its edges along the curve become curved where their other end is on
-// the curve too. Made only if the corners' triangles stay counter-clockwise and v's triangles
-// are certified; where v's triangles end above max(stop energy, the worst around v before), v's
+// the curve too. Made only if the corners' triangles stay counter-clockwise; where v's
+// triangles are certified but end above max(stop energy, the worst around v before), v's
 // neighbours and the centres around them are smoothed towards the new place (twice at most).
-// Kept only if nothing around ends worse, if need be after step 4's operations
+// Kept only if nothing around ends worse or uncertified, if need be after step 4's operations
 // (keep_unless_worse); otherwise v waits off its curve for a later attempt.
 int Builder::project(int v) {
   TriMesh& m = out_.linear;
@@ -206,8 +206,10 @@ int Builder::project(int v) {
     place_on_curve_at(v, n, t);
     m.set_position(v, p);  // the neighbours' searches see v where it is now
     if (!certify_all(m.triangles_of(v))) {
-      undo();
-      return false;
+      // A curved edge that bulges into a triangle: left to the repair by the operations, which
+      // keep any change that leaves fewer triangles uncertified.
+      for (int u : m.triangles_of(v)) scaled_[u] = certify(u).value_or(-1.0);
+      return true;
     }
     for (int round = 0; round < 2 && worst_of(region) > allowed; ++round) {
       for (int w : neighbours) move_corner(w);

@@ -4,9 +4,10 @@ vertex brought onto its curve late, a straight primary edge put on its curve in 
 kept only when the triangles around them end no worse than they were (above the stop energy),
 if need be after step 4's operations have repaired them, and are otherwise taken back.
 
-Three drawings of the collection exercise both outcomes: in `network_cloud_david_klan_01` and
-`ape_miele` moves are kept after a repair (`curve.repaired_moves`), in
-`fireman_enrique_meza_c_01` some are refused (`curve.refused_moves`), and the vertex stays off
+Four drawings of the collection exercise both outcomes: in `network_cloud_david_klan_01` and
+`ape_miele` moves are kept after a repair (`curve.repaired_moves`), in `cormorant-md` a late
+projection whose curved edges leave a triangle uncertified is kept after the repair certifies it,
+in `fireman_enrique_meza_c_01` some are refused (`curve.refused_moves`), and the vertex stays off
 its curve, two primary edges left straight each. Each mesh is certified by the independent
 checker (tests/tools/msh_check.py) and every element is at most AMIPS 20 as it measures them;
 where nothing was refused, no primary edge is left straight; the curve stage ends no worse than
@@ -31,6 +32,7 @@ tmp = tempfile.TemporaryDirectory()
 drawings = [
     "computer/network_cloud_david_klan_01.svg",
     "unsorted/ape_miele.svg",
+    "animals/birds/cormorant-md.svg",
     "people/fireman_enrique_meza_c_01.svg",
 ]
 for d in drawings:
