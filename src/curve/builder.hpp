@@ -115,17 +115,22 @@ class Builder {
   int smooth_corner(int v);
   int smooth_centre(int t);
 
-  // The largest of `measure(t, bound)` (energy, badness) over v's triangles: exact below
-  // `bound`, at least `bound` otherwise (it stops at the first triangle that reaches it).
+  // The largest of `measure(t, bound)` (energy, badness) over `triangles`, or over v's: exact
+  // below `bound`, at least `bound` otherwise (it stops at the first triangle that reaches it).
   template <class Measure>
-  double star_worst(int v, const Measure& measure,
+  double worst_over(const std::vector<int>& triangles, const Measure& measure,
                     double bound = std::numeric_limits<double>::infinity()) const {
     double worst = 0;
-    for (int t : out_.linear.triangles_of(v)) {
+    for (int t : triangles) {
       worst = std::max(worst, measure(t, bound));
       if (worst >= bound) break;
     }
     return worst;
+  }
+  template <class Measure>
+  double star_worst(int v, const Measure& measure,
+                    double bound = std::numeric_limits<double>::infinity()) const {
+    return worst_over(out_.linear.triangles_of(v), measure, bound);
   }
 
   // Where free corner v should go: compass search, from where it is and a first step of a quarter
@@ -192,8 +197,8 @@ class Builder {
   };
   State save_state() const;
   void restore_state(State&& saved);
-  // The vertices within `rings` edges of the centres; the alive triangles at some of vertices;
-  // their worst energy (exact below `bound`, at least `bound` otherwise).
+  // The vertices within `rings` edges of the centres; the alive triangles at some vertices;
+  // their worst energy (worst_over with energy).
   std::vector<int> vertices_near(const std::vector<int>& centres, int rings) const;
   std::vector<int> triangles_at(const std::vector<int>& vertices) const;
   double worst_of(const std::vector<int>& triangles, double bound = std::numeric_limits<double>::infinity()) const;

@@ -34,10 +34,7 @@ std::vector<int> Builder::triangles_at(const std::vector<int>& vertices) const {
 }
 
 double Builder::worst_of(const std::vector<int>& triangles, double bound) const {
-  double worst = 0;
-  for (int t : triangles)
-    if ((worst = std::max(worst, energy(t, bound))) >= bound) break;
-  return worst;
+  return worst_over(triangles, [this](int t, double b) { return energy(t, b); }, bound);
 }
 
 Builder::State Builder::save_state() const {
@@ -56,39 +53,43 @@ void Builder::restore_state(State&& saved) {
 
 // `move()` makes the move under the mesh's journal (left open) and returns true, or takes itself
 // back and returns false; `undo()` takes a made move back (rolling the journal back). Judged on
-// the triangles at the centres and their neighbours (what the move changes) and on those within
-// three rings (what a repair may change): each at most max(stop energy, its worst before), and
-// no more of the latter uncertified than before (a move may leave some for the repair).
-// When the move alone is above, it is taken back, everything the stage holds is saved, and the
+// the triangles at the centres and their neighbours (what the move changes) and, after a repair,
+// also on those within three rings (what the repair may change): each set at most max(stop
+// energy, its worst before), and no more of the latter uncertified than before (a move may leave
+// some for the repair). The move alone changes only the first set, so it is judged on that one:
+// the second then holds by itself.
+// When the move alone is worse, it is taken back, everything the stage holds is saved, and the
 // move is made again and followed by up to four rounds of repair: step 4's operations on the
 // triangles there above the stop energy (each kept only if it lowers the worst of what it
 // changes), the centres and their neighbours moved, the centres of the triangles smoothed. Still
-// above, the saved state comes back. (The mesh's journal has one level, which each operation
+// worse, the saved state comes back. (The mesh's journal has one level, which each operation
 // uses: hence the copy, made only for the few moves that need a repair.)
 bool Builder::keep_unless_worse(const std::vector<int>& centres, const std::function<bool()>& move,
                                 const std::function<void()>& undo) {
   TriMesh& m = out_.linear;
-  const std::vector<int> around = vertices_near(centres, 1), wide = vertices_near(centres, 3);
-  const double bound_around = std::max(o_.stop_amips, worst_of(triangles_at(around)));
-  const double bound_wide = std::max(o_.stop_amips, worst_of(triangles_at(wide)));
-  const auto uncertified = [&] {
+  const auto uncertified = [&](const std::vector<int>& vertices) {
     int count = 0;
-    for (int t : triangles_at(wide)) count += scaled_[t] <= 0;
+    for (int t : triangles_at(vertices)) count += scaled_[t] <= 0;
     return count;
   };
-  const int uncertified_before = uncertified();
-  const auto within = [&] {
-    const auto above = [](double x) { return std::nextafter(x, std::numeric_limits<double>::infinity()); };
-    return uncertified() <= uncertified_before &&
-           worst_of(triangles_at(around), above(bound_around)) <= bound_around &&
-           worst_of(triangles_at(wide), above(bound_wide)) <= bound_wide;
+  const auto at_most = [&](const std::vector<int>& vertices, double bound) {
+    return worst_of(triangles_at(vertices), std::nextafter(bound, std::numeric_limits<double>::infinity())) <= bound;
   };
+  const std::vector<int> around = vertices_near(centres, 1);
+  const double bound_around = std::max(o_.stop_amips, worst_of(triangles_at(around)));
+  const int uncertified_around = uncertified(around);
   if (!move()) return false;
-  if (within()) {
+  if (uncertified(around) <= uncertified_around && at_most(around, bound_around)) {
     m.commit();
     return true;
   }
   undo();
+  const std::vector<int> wide = vertices_near(centres, 3);
+  const double bound_wide = std::max(o_.stop_amips, worst_of(triangles_at(wide)));
+  const int uncertified_wide = uncertified(wide);
+  const auto within = [&] {
+    return uncertified(wide) <= uncertified_wide && at_most(around, bound_around) && at_most(wide, bound_wide);
+  };
   State saved = save_state();
   if (!move()) return false;  // it was made once from this very state
   m.commit();
