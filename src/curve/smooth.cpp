@@ -2,6 +2,7 @@
 // is lowest (free and secondary corners in the plane, corners on curves along them), each move
 // certified; primary vertices still off their curve are projected onto it.
 #include "curve/builder.hpp"
+#include "geometry/amips.hpp"
 #include "geometry/closest_point.hpp"
 
 namespace curvemesh::curve::detail {
@@ -163,13 +164,15 @@ int Builder::smooth_curve_corner(int v) {
   return 1;
 }
 
-// Moves primary vertex v, still off its curve, to its closest point on the curve (between its
-// two curve neighbours); its edges along the curve become curved where their other end is on
-// the curve too. Made only if the corners' triangles stay counter-clockwise; where v's
-// triangles are certified but end above max(stop energy, the worst around v before), v's
-// neighbours and the centres around them are smoothed towards the new place (twice at most).
-// Kept only if nothing around ends worse or uncertified, if need be after step 4's operations
-// (keep_unless_worse); otherwise v waits off its curve for a later attempt.
+// Moves primary vertex v, still off its curve, onto the curve between its two curve neighbours:
+// to its closest point there, or, where that would turn one of its triangles over (a neighbour
+// lies between v and the curve) or is not kept, to the place on the curve where its straight
+// triangles' worst energy is lowest (of 63 evenly spaced in parameter). Its edges along the curve
+// become curved where their other end is on the curve too. Where v's triangles are certified but
+// end above max(stop energy, the worst around v before), v's neighbours and the centres around
+// them are smoothed towards the new place (twice at most). Kept only if nothing around ends worse
+// or uncertified, if need be after step 4's operations (keep_unless_worse); otherwise v waits
+// off its curve for a later attempt.
 int Builder::project(int v) {
   TriMesh& m = out_.linear;
   const mesh::VertexTag tag0 = m.tag(v);
@@ -178,9 +181,26 @@ int Builder::project(int v) {
   const mesh::SectionCurve& curve = c_.sections[tag0.section];
   const double lo = std::min(n.tx, n.ty), hi = std::max(n.tx, n.ty), margin = 1e-3 * (hi - lo);
   const geometry::ClosestPoint cp = geometry::closest_point(curve.piece, m.point(v));
-  const double t = std::clamp(curve.t0 + cp.t * (curve.t1 - curve.t0), lo + margin, hi - margin);
-  const Vec2 p = curve.eval(t);
-  if (!mesh::star_valid_at(m, v, p)) return 0;
+  const double closest = std::clamp(curve.t0 + cp.t * (curve.t1 - curve.t0), lo + margin, hi - margin);
+  const auto straight_worst = [&](const Vec2& p) {
+    double worst = 0;
+    for (int u : m.triangles_of(v)) {
+      std::array<Vec2, 3> q;
+      for (int i = 0; i < 3; ++i) q[i] = m.triangle(u)[i] == v ? p : m.point(m.triangle(u)[i]);
+      worst = std::max(worst, geometry::amips(q[0], q[1], q[2]));
+    }
+    return worst;
+  };
+  double best = std::numeric_limits<double>::infinity(), alternative = closest;
+  const auto find_alternative = [&] {
+    for (int k = 1; k < 64; ++k) {
+      const double t = lo + margin + (hi - lo - 2 * margin) * k / 64.0;
+      const Vec2 p = curve.eval(t);
+      if (!mesh::star_valid_at(m, v, p)) continue;
+      if (const double e = straight_worst(p); e < best) best = e, alternative = t;
+    }
+    return best < std::numeric_limits<double>::infinity();
+  };
   const std::vector<int> neighbours = m.neighbours(v);
   const std::vector<int> region = triangles_at(vertices_near({v}, 1));  // what the move changes
   const double allowed = std::max(o_.stop_amips, worst_of(region));
@@ -197,27 +217,34 @@ int Builder::project(int v) {
     for (int k = 0; k < 2; ++k) curved_[curve_edges[k]] = curved_before[k];
     s_.smoothing_moves = moves_before;
   };
-  const auto move = [&] {
-    m.open_journal();
-    mesh::VertexTag tag = tag0;
-    tag.on_curve = true;
-    m.set_tag(v, tag);
-    for (int w : {n.x, n.y}) curved_[mesh::edge_key(v, w)] = followable(m, v, w);
-    place_on_curve_at(v, n, t);
-    m.set_position(v, p);  // the neighbours' searches see v where it is now
-    if (!certify_all(m.triangles_of(v))) {
-      // A curved edge that bulges into a triangle: left to the repair by the operations, which
-      // keep any change that leaves fewer triangles uncertified.
-      for (int u : m.triangles_of(v)) scaled_[u] = certify(u).value_or(-1.0);
+  const auto move_to = [&](double t) {
+    return [&, t] {
+      const Vec2 p = curve.eval(t);
+      m.open_journal();
+      mesh::VertexTag tag = tag0;
+      tag.on_curve = true;
+      m.set_tag(v, tag);
+      for (int w : {n.x, n.y}) curved_[mesh::edge_key(v, w)] = followable(m, v, w);
+      place_on_curve_at(v, n, t);
+      m.set_position(v, p);  // the neighbours' searches see v where it is now
+      if (!certify_all(m.triangles_of(v))) {
+        // A curved edge that bulges into a triangle: left to the repair by the operations, which
+        // keep any change that leaves fewer triangles uncertified.
+        for (int u : m.triangles_of(v)) scaled_[u] = certify(u).value_or(-1.0);
+        return true;
+      }
+      for (int round = 0; round < 2 && worst_of(region) > allowed; ++round) {
+        for (int w : neighbours) move_corner(w);
+        for (int u : region) smooth_centre(u);
+      }
       return true;
-    }
-    for (int round = 0; round < 2 && worst_of(region) > allowed; ++round) {
-      for (int w : neighbours) move_corner(w);
-      for (int u : region) smooth_centre(u);
-    }
-    return true;
+    };
   };
-  return keep_unless_worse({v}, move, undo) ? 1 : 0;
+  if (mesh::star_valid_at(m, v, curve.eval(closest)) && keep_unless_worse({v}, move_to(closest), undo)) return 1;
+  // The move and its repair are undone: v and its star are as they were.
+  if (!find_alternative() || alternative == closest || !keep_unless_worse({v}, move_to(alternative), undo)) return 0;
+  ++s_.projections_elsewhere;
+  return 1;
 }
 
 int Builder::smooth_corner(int v) {

@@ -66,6 +66,7 @@ Json curve_json(const curve::Stats& s, double d) {
           {"coarsening_collapses", s.coarsening_collapses},
           {"curved_swaps", s.curved_swaps},
           {"late_projections", s.late_projections},
+          {"projections_elsewhere", s.projections_elsewhere},
           {"repaired_moves", s.repaired_moves},
           {"refused_moves", s.refused_moves},
           {"max_amips", s.max_amips},

@@ -4,14 +4,16 @@ vertex brought onto its curve late, a straight primary edge put on its curve in 
 kept only when the triangles around them end no worse than they were (above the stop energy),
 if need be after step 4's operations have repaired them, and are otherwise taken back.
 
-Four drawings of the collection exercise both outcomes: in `network_cloud_david_klan_01` and
+Five drawings of the collection exercise every outcome: in `network_cloud_david_klan_01` and
 `ape_miele` moves are kept after a repair (`curve.repaired_moves`), in `cormorant-md` a late
 projection whose curved edges leave a triangle uncertified is kept after the repair certifies it,
-in `fireman_enrique_meza_c_01` some are refused (`curve.refused_moves`), and the vertex stays off
-its curve, two primary edges left straight each. Each mesh is certified by the independent
-checker (tests/tools/msh_check.py) and every element is at most AMIPS 20 as it measures them;
-where nothing was refused, no primary edge is left straight; the curve stage ends no worse than
-it began (its worst energy at most max(20, the worst on entering step 4)).
+in `fireman_enrique_meza_c_01` a projection to the closest point is refused
+(`curve.refused_moves`) and the vertex goes to another place on its curve instead
+(`curve.projections_elsewhere`), and in `donna_casinista` every place is refused: the vertex stays
+off its curve, its two primary edges straight. Each mesh is certified by the independent checker
+(tests/tools/msh_check.py) and every element is at most AMIPS 20 as it measures them; only where
+a move was refused may a primary edge be left straight; the curve stage ends no worse than it
+began (its worst energy at most max(20, the worst on entering step 4)).
 
 usage: guarded_moves_test.py CURVEMESH_BINARY [SVG_ROOT]
 """
@@ -34,11 +36,13 @@ drawings = [
     "unsorted/ape_miele.svg",
     "animals/birds/cormorant-md.svg",
     "people/fireman_enrique_meza_c_01.svg",
+    "unsorted/donna_casinista.svg",
 ]
 for d in drawings:
     check(f"{d} is under {root} (Debian's openclipart-svg, installed by scripts/)", os.path.exists(os.path.join(root, d)))
 
-totals = {"repaired_moves": 0, "refused_moves": 0, "late_projections": 0}
+totals = {"repaired_moves": 0, "refused_moves": 0, "late_projections": 0, "projections_elsewhere": 0}
+straight = {}
 for drawing in drawings:
     name = os.path.basename(drawing)
     out, stats_path = os.path.join(tmp.name, name + ".msh"), os.path.join(tmp.name, name + ".json")
@@ -58,15 +62,19 @@ for drawing in drawings:
     check(f"{name}: no worse than on entering step 4",
           curve["max_amips"] <= max(20.0, curve["max_amips_before_smoothing"]),
           f"{curve['max_amips']} after, {curve['max_amips_before_smoothing']} before")
+    straight[name] = curve["straight_primary_edges"]
     if curve["refused_moves"] == 0:
         check(f"{name}: nothing refused, no primary edge straight", curve["straight_primary_edges"] == 0,
-              curve["straight_primary_edges"])
-    else:
-        # A refused projection leaves its vertex off the curve: its two curve edges straight.
-        check(f"{name}: a refused move leaves straight edges", curve["straight_primary_edges"] > 0,
               curve["straight_primary_edges"])
 
 check("some moves were kept after a repair by the operations", totals["repaired_moves"] > 0, totals)
 check("some moves were refused", totals["refused_moves"] > 0, totals)
 check("vertices were projected late", totals["late_projections"] > 0, totals)
+check("a vertex refused at its closest point went elsewhere on its curve", totals["projections_elsewhere"] > 0, totals)
+# fireman's vertex, refused at its closest point, is on its curve elsewhere; donna's, refused
+# everywhere, stays off it: its two curve edges straight.
+check("fireman_enrique_meza_c_01.svg: no primary edge straight", straight.get("fireman_enrique_meza_c_01.svg") == 0,
+      straight)
+check("donna_casinista.svg: a vertex refused everywhere leaves its two edges straight",
+      straight.get("donna_casinista.svg") == 2, straight)
 finish()
