@@ -2,7 +2,6 @@
 // is lowest (free and secondary corners in the plane, corners on curves along them), each move
 // certified; primary vertices still off their curve are projected onto it.
 #include "curve/builder.hpp"
-#include "geometry/amips.hpp"
 #include "geometry/closest_point.hpp"
 
 namespace curvemesh::curve::detail {
@@ -166,8 +165,8 @@ int Builder::smooth_curve_corner(int v) {
 
 // Moves primary vertex v, still off its curve, onto the curve between its two curve neighbours:
 // to its closest point there, or, where that would turn one of its triangles over (a neighbour
-// lies between v and the curve) or is not kept, to the place on the curve where its straight
-// triangles' worst energy is lowest (of 63 evenly spaced in parameter). Its edges along the curve
+// lies between v and the curve) or is not kept, to the place on the curve where its curved
+// triangles are best (of 63 evenly spaced in parameter). Its edges along the curve
 // become curved where their other end is on the curve too. Where v's triangles are certified but
 // end above max(stop energy, the worst around v before), v's neighbours and the centres around
 // them are smoothed towards the new place (twice at most). Kept only if nothing around ends worse
@@ -182,25 +181,6 @@ int Builder::project(int v) {
   const double lo = std::min(n.tx, n.ty), hi = std::max(n.tx, n.ty), margin = 1e-3 * (hi - lo);
   const geometry::ClosestPoint cp = geometry::closest_point(curve.piece, m.point(v));
   const double closest = std::clamp(curve.t0 + cp.t * (curve.t1 - curve.t0), lo + margin, hi - margin);
-  const auto straight_worst = [&](const Vec2& p) {
-    double worst = 0;
-    for (int u : m.triangles_of(v)) {
-      std::array<Vec2, 3> q;
-      for (int i = 0; i < 3; ++i) q[i] = m.triangle(u)[i] == v ? p : m.point(m.triangle(u)[i]);
-      worst = std::max(worst, geometry::amips(q[0], q[1], q[2]));
-    }
-    return worst;
-  };
-  double best = std::numeric_limits<double>::infinity(), alternative = closest;
-  const auto find_alternative = [&] {
-    for (int k = 1; k < 64; ++k) {
-      const double t = lo + margin + (hi - lo - 2 * margin) * k / 64.0;
-      const Vec2 p = curve.eval(t);
-      if (!mesh::star_valid_at(m, v, p)) continue;
-      if (const double e = straight_worst(p); e < best) best = e, alternative = t;
-    }
-    return best < std::numeric_limits<double>::infinity();
-  };
   const std::vector<int> neighbours = m.neighbours(v);
   const std::vector<int> region = triangles_at(vertices_near({v}, 1));  // what the move changes
   const double allowed = std::max(o_.stop_amips, worst_of(region));
@@ -239,6 +219,26 @@ int Builder::project(int v) {
       }
       return true;
     };
+  };
+  // Another place on the curve: of 63 evenly spaced in parameter, where the star stays
+  // counter-clockwise, the one whose curved triangles are best (badness: the worst energy where
+  // all are valid on the lattice, else how far from valid).
+  double alternative = closest, best = std::numeric_limits<double>::infinity();
+  const auto find_alternative = [&] {
+    for (int k = 1; k < 64; ++k) {
+      const double t = lo + margin + (hi - lo - 2 * margin) * k / 64.0;
+      if (!mesh::star_valid_at(m, v, curve.eval(t))) continue;
+      m.open_journal();
+      mesh::VertexTag tag = tag0;
+      tag.on_curve = true;
+      m.set_tag(v, tag);
+      for (int w : {n.x, n.y}) curved_[mesh::edge_key(v, w)] = followable(m, v, w);
+      place_on_curve_at(v, n, t);
+      const double b = worst_over(m.triangles_of(v), [this](int u, double) { return badness(u); });
+      undo();
+      if (b < best) best = b, alternative = t;
+    }
+    return best < std::numeric_limits<double>::infinity();
   };
   if (mesh::star_valid_at(m, v, curve.eval(closest)) && keep_unless_worse({v}, move_to(closest), undo)) return 1;
   // The move and its repair are undone: v and its star are as they were.

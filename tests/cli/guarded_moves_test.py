@@ -9,11 +9,12 @@ Five drawings of the collection exercise every outcome: in `network_cloud_david_
 projection whose curved edges leave a triangle uncertified is kept after the repair certifies it,
 in `fireman_enrique_meza_c_01` a projection to the closest point is refused
 (`curve.refused_moves`) and the vertex goes to another place on its curve instead
-(`curve.projections_elsewhere`), and in `donna_casinista` every place is refused: the vertex stays
-off its curve, its two primary edges straight. Each mesh is certified by the independent checker
-(tests/tools/msh_check.py) and every element is at most AMIPS 20 as it measures them; only where
-a move was refused may a primary edge be left straight; the curve stage ends no worse than it
-began (its worst energy at most max(20, the worst on entering step 4)).
+(`curve.projections_elsewhere`), and in `donna_casinista` the closest point would turn the
+vertex's star over, and it goes elsewhere on its curve after a repair. Each mesh is certified by
+the independent checker (tests/tools/msh_check.py) and every element is at most AMIPS 20 as it
+measures them; only where a move was refused may a primary edge be left straight, and in these
+two drawings none is; the curve stage ends no worse than it began (its worst energy at most
+max(20, the worst on entering step 4)).
 
 usage: guarded_moves_test.py CURVEMESH_BINARY [SVG_ROOT]
 """
@@ -42,7 +43,7 @@ for d in drawings:
     check(f"{d} is under {root} (Debian's openclipart-svg, installed by scripts/)", os.path.exists(os.path.join(root, d)))
 
 totals = {"repaired_moves": 0, "refused_moves": 0, "late_projections": 0, "projections_elsewhere": 0}
-straight = {}
+straight, elsewhere = {}, {}
 for drawing in drawings:
     name = os.path.basename(drawing)
     out, stats_path = os.path.join(tmp.name, name + ".msh"), os.path.join(tmp.name, name + ".json")
@@ -63,6 +64,7 @@ for drawing in drawings:
           curve["max_amips"] <= max(20.0, curve["max_amips_before_smoothing"]),
           f"{curve['max_amips']} after, {curve['max_amips_before_smoothing']} before")
     straight[name] = curve["straight_primary_edges"]
+    elsewhere[name] = curve["projections_elsewhere"]
     if curve["refused_moves"] == 0:
         check(f"{name}: nothing refused, no primary edge straight", curve["straight_primary_edges"] == 0,
               curve["straight_primary_edges"])
@@ -70,11 +72,9 @@ for drawing in drawings:
 check("some moves were kept after a repair by the operations", totals["repaired_moves"] > 0, totals)
 check("some moves were refused", totals["refused_moves"] > 0, totals)
 check("vertices were projected late", totals["late_projections"] > 0, totals)
-check("a vertex refused at its closest point went elsewhere on its curve", totals["projections_elsewhere"] > 0, totals)
-# fireman's vertex, refused at its closest point, is on its curve elsewhere; donna's, refused
-# everywhere, stays off it: its two curve edges straight.
-check("fireman_enrique_meza_c_01.svg: no primary edge straight", straight.get("fireman_enrique_meza_c_01.svg") == 0,
-      straight)
-check("donna_casinista.svg: a vertex refused everywhere leaves its two edges straight",
-      straight.get("donna_casinista.svg") == 2, straight)
+# fireman's vertex, refused at its closest point, and donna's, whose star would turn over there,
+# are on their curves elsewhere.
+for name in ["fireman_enrique_meza_c_01.svg", "donna_casinista.svg"]:
+    check(f"{name}: the vertex went elsewhere on its curve", elsewhere.get(name, 0) > 0, elsewhere)
+    check(f"{name}: no primary edge straight", straight.get(name) == 0, straight)
 finish()
