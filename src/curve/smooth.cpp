@@ -197,16 +197,20 @@ int Builder::project(int v) {
     for (int k = 0; k < 2; ++k) curved_[curve_edges[k]] = curved_before[k];
     s_.smoothing_moves = moves_before;
   };
+  // v on the curve at t, its edges along the curve curved where they can follow it, under the
+  // journal (undo takes it back).
+  const auto put_on_curve = [&](double t) {
+    m.open_journal();
+    mesh::VertexTag tag = tag0;
+    tag.on_curve = true;
+    m.set_tag(v, tag);
+    for (int w : {n.x, n.y}) curved_[mesh::edge_key(v, w)] = followable(m, v, w);
+    place_on_curve_at(v, n, t);
+  };
   const auto move_to = [&](double t) {
     return [&, t] {
-      const Vec2 p = curve.eval(t);
-      m.open_journal();
-      mesh::VertexTag tag = tag0;
-      tag.on_curve = true;
-      m.set_tag(v, tag);
-      for (int w : {n.x, n.y}) curved_[mesh::edge_key(v, w)] = followable(m, v, w);
-      place_on_curve_at(v, n, t);
-      m.set_position(v, p);  // the neighbours' searches see v where it is now
+      put_on_curve(t);
+      m.set_position(v, curve.eval(t));  // the neighbours' searches see v where it is now
       if (!certify_all(m.triangles_of(v))) {
         // A curved edge that bulges into a triangle: left to the repair by the operations, which
         // keep any change that leaves fewer triangles uncertified.
@@ -228,12 +232,7 @@ int Builder::project(int v) {
     for (int k = 1; k < 64; ++k) {
       const double t = lo + margin + (hi - lo - 2 * margin) * k / 64.0;
       if (!mesh::star_valid_at(m, v, curve.eval(t))) continue;
-      m.open_journal();
-      mesh::VertexTag tag = tag0;
-      tag.on_curve = true;
-      m.set_tag(v, tag);
-      for (int w : {n.x, n.y}) curved_[mesh::edge_key(v, w)] = followable(m, v, w);
-      place_on_curve_at(v, n, t);
+      put_on_curve(t);
       const double b = worst_over(m.triangles_of(v), [this](int u, double) { return badness(u); });
       undo();
       if (b < best) best = b, alternative = t;
