@@ -54,7 +54,7 @@ for drawing in drawings:
         continue
     curve = json.load(open(stats_path))["curve"]
     for key in totals:
-        totals[key] += curve[key]
+        totals[key] += curve.get(key, 0)
     c = subprocess.run([sys.executable, checker, out, "--json"], capture_output=True, text=True, timeout=600)
     check(f"{name}: independent checker accepts the mesh", c.returncode == 0, (c.stdout + c.stderr)[-600:])
     report = json.loads(c.stdout) if c.returncode == 0 else {}
@@ -64,7 +64,7 @@ for drawing in drawings:
           curve["max_amips"] <= max(20.0, curve["max_amips_before_smoothing"]),
           f"{curve['max_amips']} after, {curve['max_amips_before_smoothing']} before")
     straight[name] = curve["straight_primary_edges"]
-    elsewhere[name] = curve["projections_elsewhere"]
+    elsewhere[name] = curve.get("projections_elsewhere", 0)
     if curve["refused_moves"] == 0:
         check(f"{name}: nothing refused, no primary edge straight", curve["straight_primary_edges"] == 0,
               curve["straight_primary_edges"])
