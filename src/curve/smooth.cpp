@@ -239,9 +239,11 @@ int Builder::project(int v) {
     }
     return best < std::numeric_limits<double>::infinity();
   };
-  if (mesh::star_valid_at(m, v, curve.eval(closest)) && keep_unless_worse({v}, move_to(closest), undo)) return 1;
+  if (mesh::star_valid_at(m, v, curve.eval(closest)) && keep_unless_worse({v}, move_to(closest), undo))
+    return 1;
   // The move and its repair are undone: v and its star are as they were.
-  if (!find_alternative() || alternative == closest || !keep_unless_worse({v}, move_to(alternative), undo)) return 0;
+  if (!find_alternative() || alternative == closest || !keep_unless_worse({v}, move_to(alternative), undo))
+    return 0;
   ++s_.projections_elsewhere;
   return 1;
 }
