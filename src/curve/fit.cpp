@@ -25,11 +25,10 @@ Vec2 edge_point(const Vec2& p0, const Vec2& p1, const Vec2& p2, const Vec2& p3, 
 // curve. First the edge is put on its curve and the centre nodes and the free opposite corners
 // move (compass search on badness) until both triangles are certified, kept only if nothing
 // around the edge ends worse than it was, if need be after step 4's operations
-// (keep_unless_worse); failing that, the edge's
-// two inner nodes are fitted: the largest blend s·(curve) + (1 − s)·(chord) with both triangles
-// certified and within the stop energy (or the straight edge's), s by bisection (the
-// least-squares fit to the curve along the one direction in which the straight edge is known to
-// be valid). The remaining distance is recorded in the stats.
+// (keep_unless_worse); failing that, the edge's two inner nodes are fitted: the largest blend
+// s·(curve) + (1 − s)·(chord) with both triangles certified and within the stop energy (or the
+// straight edge's), s by bisection (the least-squares fit to the curve along the one direction in
+// which the straight edge is known to be valid). The remaining distance is recorded in the stats.
 void Builder::fit(int a, int b) {
   TriMesh& m = out_.linear;
   const auto key = mesh::edge_key(a, b);
