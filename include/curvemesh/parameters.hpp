@@ -2,12 +2,24 @@
 // curvemesh's parameters and its one error type: plain C++, no dependency. Part of the public
 // API (curvemesh/curvemesh.hpp includes it); the library's pipeline resolves these same
 // parameters for each drawing.
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
 #include "curvemesh/export.hpp"
 
 namespace curvemesh {
+
+// What one drawing may cost before it is refused with Error (invalid_input), whose message names
+// the limit and its option: a small hostile file can describe an enormous drawing (<use> fanning
+// out, a path of millions of segments, curves crossing everywhere). With these defaults a
+// `curvemesh mesh` run stays under about 2 GB of memory (README, "Errors and limits").
+struct CURVEMESH_API Limits {
+  double max_input_mb = 64;              // --max-input-mb: the input file's size, in MiB (2^20 bytes)
+  std::size_t max_elements = 1'000'000;  // --max-elements: SVG elements drawn, each <use> instance counted
+  std::size_t max_curves = 500'000;      // --max-curves: cubic curves read, after <use> and path data
+  std::size_t max_triangles = 2'000'000;  // --max-triangles: triangles of the mesh at any stage
+};
 
 // The method's parameters with the paper's symbols and defaults (TriWild, Hu et al. 2019: §4,
 // §4.1, §4.2). Lengths are relative to d, the diagonal of the drawing's bounding box; each is
@@ -34,6 +46,8 @@ struct CURVEMESH_API Parameters {
   double curved_stop_amips =
       20.0;                    // --curved-stop-amips: step 4 stops once every curved triangle is at most this
   int max_curved_passes = 10;  // --max-curved-passes: ... or after this many passes
+
+  Limits limits;  // not the method's: bounds on what a drawing may cost
 
   // Throws Error (Error::Kind::invalid_parameters) naming the first inconsistent parameter by
   // its command-line option, e.g. "--epsilon (0.0005) must be at least --mu (0.001)".

@@ -1,18 +1,11 @@
 #pragma once
-// Writing outputs all-or-nothing: a failed run leaves no partial file behind.
-#include <stdexcept>
-#include <string>
-#include <string_view>
+// Writing outputs all or nothing (base/files.hpp), under the names the writers of this layer use.
+#include "base/files.hpp"
 
 namespace curvemesh::io {
 
-class OutputError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-// Writes `content` to a temporary file beside `path` and renames it over `path`.
-// Throws OutputError naming the path when that fails.
-void write_file_atomically(const std::string& path, std::string_view content);
+using base::OutputError;
+using base::OutputFiles;
+using base::write_file_atomically;
 
 }  // namespace curvemesh::io

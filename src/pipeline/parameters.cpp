@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <utility>
 
 namespace curvemesh {
 
@@ -53,6 +54,11 @@ void Parameters::validate() const {
   within("--stop-amips", stop_amips, 2.0, 1e9);
   within("--curved-stop-amips", curved_stop_amips, 2.0, 1e9);
   if (max_curved_passes < 0) refuse("--max-curved-passes", max_curved_passes, "a non-negative number");
+  positive("--max-input-mb", limits.max_input_mb);
+  for (const auto& [option, value] : {std::pair{"--max-elements", limits.max_elements},
+                                      std::pair{"--max-curves", limits.max_curves},
+                                      std::pair{"--max-triangles", limits.max_triangles}})
+    if (value < 1) refuse(option, double(value), "at least 1");
 }
 
 namespace pipeline {

@@ -270,6 +270,9 @@ Result run(const Source& source, const Parameters& parameters, const RunOptions&
       svg::ReadOptions read;
       read.degenerate_tolerance_rel = parameters.eps_m_rel;
       read.close_filled_subpaths = reads_paint(options);
+      read.max_curves = parameters.limits.max_curves;
+      read.max_elements = parameters.limits.max_elements;
+      read.max_input_bytes = static_cast<std::uint64_t>(parameters.limits.max_input_mb * 1048576.0);
       if (source.kind == Source::Kind::file)
         r.soup = svg::read_svg_file(source.path, read);
       else if (source.kind == Source::Kind::svg_text)

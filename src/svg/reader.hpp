@@ -3,6 +3,8 @@
 // when the root has a viewBox, otherwise the root's CSS pixels; every transform, nested <svg>
 // viewport and <use> offset has been applied. The root's width/height do not scale anything.
 #include <cstddef>
+#include <cstdint>
+#include <curvemesh/parameters.hpp>
 #include <string>
 #include <string_view>
 
@@ -21,11 +23,13 @@ struct ReadOptions {
   // Refuse documents nested deeper than this (elements inside elements, <use> included).
   int max_depth = 512;
   // Refuse documents that expand (through <use>) to more curves or elements than this: a small
-  // file can otherwise describe an exponentially large drawing.
-  std::size_t max_curves = 20'000'000;
-  std::size_t max_elements = 5'000'000;
+  // file can otherwise describe an exponentially large drawing (Limits, the public defaults).
+  std::size_t max_curves = Limits{}.max_curves;
+  std::size_t max_elements = Limits{}.max_elements;
   // Refuse documents whose entity references expand to more characters than this.
   std::size_t max_entity_expansion = 1u << 24;
+  // read_svg_file refuses larger files.
+  std::uint64_t max_input_bytes = static_cast<std::uint64_t>(Limits{}.max_input_mb * 1048576.0);
 };
 
 // Reads SVG text. `filename` is only used in messages. Throws InputError when the document is

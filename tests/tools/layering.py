@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The layers of curvemesh, checked: a file may include its own layer and the layers below it, never
 one above. The order is the data flow (svg -> features -> triangulate -> optimize -> curve -> io) with
-geometry and mesh below it, then the one pipeline that drives the stages, then what calls the
+base (files and text from outside), geometry and mesh below it, then the one pipeline that drives the stages, then what calls the
 pipeline: the finite elements, the public API, the command line and the Python module. The finite
 elements take a finished mesh: they include no stage.
 
@@ -13,14 +13,14 @@ import re
 import sys
 import tempfile
 
-ORDER = ["geometry", "mesh", "svg", "features", "triangulate", "optimize", "curve", "io", "regions",
+ORDER = ["base", "geometry", "mesh", "svg", "features", "triangulate", "optimize", "curve", "io", "regions",
          "pipeline", "fem", "api", "app", "python"]
 RANK = {layer: i for i, layer in enumerate(ORDER)}
 # Below its own rank, a layer may still not reach these (it must go through the pipeline).
 FORBIDDEN = {
     "fem": {"svg", "features", "triangulate", "optimize", "curve"},
     "api": {"svg", "features", "triangulate", "optimize", "curve", "regions", "fem"},
-    "python": {"geometry", "mesh", "svg", "features", "triangulate", "optimize", "curve", "io", "regions",
+    "python": {"base", "geometry", "mesh", "svg", "features", "triangulate", "optimize", "curve", "io", "regions",
                "pipeline", "fem"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"', re.M)
