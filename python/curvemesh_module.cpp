@@ -127,6 +127,18 @@ PYBIND11_MODULE(_curvemesh, m) {
       .def_readwrite("linear", &curvemesh::Parameters::linear, "--linear")
       .def_readwrite("curved_stop_amips", &curvemesh::Parameters::curved_stop_amips, "--curved-stop-amips")
       .def_readwrite("max_curved_passes", &curvemesh::Parameters::max_curved_passes, "--max-curved-passes")
+      .def_property(
+          "max_input_mb", [](const curvemesh::Parameters& p) { return p.limits.max_input_mb; },
+          [](curvemesh::Parameters& p, double v) { p.limits.max_input_mb = v; }, "--max-input-mb (limits)")
+      .def_property(
+          "max_elements", [](const curvemesh::Parameters& p) { return p.limits.max_elements; },
+          [](curvemesh::Parameters& p, std::size_t v) { p.limits.max_elements = v; }, "--max-elements (limits)")
+      .def_property(
+          "max_curves", [](const curvemesh::Parameters& p) { return p.limits.max_curves; },
+          [](curvemesh::Parameters& p, std::size_t v) { p.limits.max_curves = v; }, "--max-curves (limits)")
+      .def_property(
+          "max_triangles", [](const curvemesh::Parameters& p) { return p.limits.max_triangles; },
+          [](curvemesh::Parameters& p, std::size_t v) { p.limits.max_triangles = v; }, "--max-triangles (limits)")
       .def("validate", &curvemesh::Parameters::validate,
            "Raises ValueError naming the first inconsistent parameter by its command-line option.");
 

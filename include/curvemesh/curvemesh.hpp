@@ -77,9 +77,10 @@ class CURVEMESH_API Mesh {
 
   // Writes the mesh by the path's extension: ".msh" (Gmsh, `msh_version` 41 or 22), ".vtu" (VTK
   // Lagrange triangles) or ".svg" (a drawing of the mesh). The file is the very one the command
-  // line writes for the same drawing and parameters. Throws Error (output) when it cannot be
-  // written, the extension (in any case) is none of these or the Mesh is empty, and Error
-  // (invalid_parameters) for another msh_version.
+  // line writes for the same drawing and parameters, written whole or not at all (never through a
+  // link planted beside it). Throws Error (output) when it cannot be written, the extension (in
+  // any case) is none of these or the Mesh is empty, and Error (invalid_parameters) for another
+  // msh_version or a path that is the drawing the Mesh was read from.
   void write(const std::string& path, int msh_version = 41) const;
 
   struct Impl;

@@ -13,7 +13,8 @@ Options are the command line's long options with "_" for "-" (``mu``, ``epsilon`
 ``edge_length``, ``min_edge_length``, ``min_angle``, ``junction_angle``, ``linear``,
 ``max_iterations``, ``stop_amips``, ``box_margin``, ``curved_stop_amips``,
 ``max_curved_passes``), and ``features=False`` for ``--no-features``; lengths are relative to
-the diagonal of the drawing's bounding box.
+the diagonal of the drawing's bounding box. The limits (``max_input_mb``, ``max_elements``,
+``max_curves``, ``max_triangles``) bound what a drawing may cost: beyond one, ValueError names it.
 
 Errors: an unreadable drawing or an invalid option value raises ValueError with the message the
 command line prints; an unknown option or a value of the wrong type raises TypeError; a file
@@ -50,6 +51,11 @@ _OPTIONS = {
     "box_margin": ("box_margin_rel", float, "--box-margin"),
     "curved_stop_amips": ("curved_stop_amips", float, "--curved-stop-amips"),
     "max_curved_passes": ("max_curved_passes", int, "--max-curved-passes"),
+    # The limits: what a drawing may cost before it is refused (ValueError naming the limit).
+    "max_input_mb": ("max_input_mb", float, "--max-input-mb"),
+    "max_elements": ("max_elements", "count", "--max-elements"),
+    "max_curves": ("max_curves", "count", "--max-curves"),
+    "max_triangles": ("max_triangles", "count", "--max-triangles"),
 }
 
 #: The options mesh() and mesh_curves() take, each with its default.
@@ -72,14 +78,15 @@ def _parameters(function, options):
             if not isinstance(value, (bool, np.bool_)):
                 raise TypeError(f"{name} must be True or False, not {type(value).__name__}")
             value = bool(value)
-        elif kind is int:
+        elif kind in (int, "count"):
             if isinstance(value, (bool, np.bool_)):
                 raise TypeError(f"{name} must be an integer, not bool")
             try:
                 value = operator.index(value)
             except TypeError:
                 raise TypeError(f"{name} must be an integer, not {type(value).__name__}") from None
-            if not -(2**31) <= value < 2**31:
+            low, high = (1, 2**63) if kind == "count" else (-(2**31), 2**31)
+            if not low <= value < high:
                 raise ValueError(f"{flag} ({value}) is out of range")
         else:
             if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
@@ -91,8 +98,12 @@ def _parameters(function, options):
 
 
 def _path(path):
-    """A path (str or os.PathLike) as the bytes the file system takes."""
-    return os.fsencode(path)
+    """A path (str or os.PathLike) as the bytes the file system takes; ValueError for an embedded
+    NUL, as Python's own open() (the file system would end the name there)."""
+    encoded = os.fsencode(path)
+    if b"\0" in encoded:
+        raise ValueError("embedded null byte")
+    return encoded
 
 
 class Mesh:
@@ -177,8 +188,9 @@ class Mesh:
         """Writes the mesh to `path` (str or os.PathLike) by its extension: ".msh" (Gmsh ASCII,
         ``msh_version`` 41 for 4.1 or 22 for 2.2), ".vtu" (VTK Lagrange triangles) or ".svg" (a
         drawing of the mesh). The file is byte for byte the one the command line writes for the
-        same drawing and options. Raises OSError when it cannot be written or the extension is
-        none of these."""
+        same drawing and options, written whole or not at all. Raises OSError when it cannot be
+        written or the extension is none of these, ValueError for a path with a NUL or one that is
+        the drawing the mesh was read from."""
         if isinstance(msh_version, (bool, np.bool_)) or msh_version not in (41, 22):
             raise ValueError(f"msh_version must be 41 or 22, not {msh_version!r}")
         self._mesh.write(_path(path), int(msh_version))
@@ -264,7 +276,8 @@ def mesh(svg, **options):
     are the command line's long options with "_" for "-":
 
         mu, epsilon, eps_m, edge_length, min_edge_length, min_angle, junction_angle, linear,
-        max_iterations, stop_amips, box_margin, curved_stop_amips, max_curved_passes
+        max_iterations, stop_amips, box_margin, curved_stop_amips, max_curved_passes,
+        max_input_mb, max_elements, max_curves, max_triangles
 
     and features (False is --no-features); see curvemesh.OPTIONS for their defaults. Raises
     ValueError with the command line's message when the drawing cannot be read or an option's

@@ -17,7 +17,9 @@ namespace curvemesh {
 namespace {
 
 Mesh mesh_source(const pipeline::Source& source, const Parameters& parameters) {
-  return make_mesh(api::translate_errors([&] { return mesh_impl(pipeline::run(source, parameters)); }));
+  return make_mesh(api::translate_errors([&] {
+    return mesh_impl(pipeline::run(source, parameters), source.kind == pipeline::Source::Kind::file ? source.path : "");
+  }));
 }
 
 CheckReport report_of(const pipeline::MeshCheck& c) {

@@ -3,6 +3,7 @@
 #include <cctype>
 
 #include "api/mesh_impl.hpp"
+#include "base/files.hpp"
 #include "io/high_order_mesh.hpp"
 #include "pipeline/output.hpp"
 
@@ -46,7 +47,7 @@ Mesh make_mesh(std::shared_ptr<const Mesh::Impl> impl) {
   return m;
 }
 
-std::shared_ptr<const Mesh::Impl> mesh_impl(pipeline::Result result) {
+std::shared_ptr<const Mesh::Impl> mesh_impl(pipeline::Result result, std::string input_path) {
   auto impl = std::make_shared<Mesh::Impl>();
   const io::HighOrderMesh m = pipeline::high_order_mesh(result);
   impl->order = m.order;
@@ -58,8 +59,10 @@ std::shared_ptr<const Mesh::Impl> mesh_impl(pipeline::Result result) {
   for (int physical : m.line_physical) impl->line_tags.push_back(tag_of(physical));
   const std::vector<int> curves = pipeline::line_curves(result, m);
   impl->line_curves.assign(curves.begin(), curves.end());
-  impl->stats_json = result.stats.dump(1);
+  impl->stats_json = pipeline::stats_text(result);
+  impl->stats_json.pop_back();  // the file's final newline
   impl->warnings = result.warnings;
+  impl->input_path = std::move(input_path);
   impl->result.emplace(std::move(result));
   return impl;
 }
@@ -112,6 +115,9 @@ void Mesh::write(const std::string& path, int msh_version) const {
   if (!m.result)
     throw Error(Error::Kind::output, path + ": nothing to write: the Mesh is empty (default-constructed)");
   const std::string ext = extension(path);
+  if (!m.input_path.empty())
+    if (const std::string clash = base::output_clash({{"drawing", m.input_path}}, {{"path", path}}); !clash.empty())
+      throw Error(Error::Kind::invalid_parameters, clash);
   api::translate_errors([&] {
     if (ext == ".msh") {
       if (msh_version != 41 && msh_version != 22)

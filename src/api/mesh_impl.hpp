@@ -25,17 +25,18 @@ struct Mesh::Impl {
   std::vector<std::int64_t> line_curves;
   std::string stats_json;
   std::vector<std::string> warnings;
+  std::string input_path;  // the file it was read from (none for text or curves): never written over
 };
 
 // The Mesh of a finished pipeline result (one that ran to its last stage).
 Mesh make_mesh(std::shared_ptr<const Mesh::Impl> impl);
-std::shared_ptr<const Mesh::Impl> mesh_impl(pipeline::Result result);
+std::shared_ptr<const Mesh::Impl> mesh_impl(pipeline::Result result, std::string input_path = {});
 
 namespace api {
 
 // Runs f, letting curvemesh::Error through and turning anything else into one: a writer's
-// io::OutputError into Kind::output, the rest (a bug, or memory running out) into Kind::internal
-// with the message the command line prints for it.
+// io::OutputError into Kind::output, memory running out into Kind::invalid_input, the rest (a bug)
+// into Kind::internal with the message the command line prints for it.
 template <class F>
 decltype(auto) translate_errors(F&& f) {
   try {
@@ -45,7 +46,9 @@ decltype(auto) translate_errors(F&& f) {
   } catch (const io::OutputError& e) {
     throw Error(Error::Kind::output, e.what());
   } catch (const std::bad_alloc&) {
-    throw Error(Error::Kind::internal, "internal error: out of memory");
+    // A drawing too large for the memory there is, within the Limits: the input's cost, not a bug.
+    throw Error(Error::Kind::invalid_input, "out of memory (std::bad_alloc): the drawing needs more memory than "
+                                            "there is; lower the Limits to refuse such drawings sooner");
   } catch (const std::exception& e) {
     throw Error(Error::Kind::internal, std::string("internal error (this is a bug): ") + e.what());
   } catch (...) {

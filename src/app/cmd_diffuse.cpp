@@ -82,7 +82,7 @@ Runner add_diffuse_command(CLI::App& app) {
   cmd->add_option("-o,--output", o.output_png, "PNG picture to write")->required();
   cmd->add_option("--width", o.width, "width of the picture in pixels (the height follows the drawing's box)")
       ->capture_default_str()
-      ->check(CLI::Range(8, 20000));
+      ->check(CLI::Range(8, 20000));  // and at most fem::kMaxPicturePixels in all
   cmd->add_flag("--linear", o.linear,
                 "solve on straight triangles: the same mesh with its straight (P1) map instead of the cubic one");
   cmd->add_option("--vtu", o.output_vtu,
@@ -93,6 +93,9 @@ Runner add_diffuse_command(CLI::App& app) {
       ->capture_default_str()
       ->check([](const std::string& s) { return svg::parse_color(s) ? std::string() : "not a CSS colour: " + s; });
   add_feature_options(*cmd, o.parameters);
+  add_memory_limit_option(*cmd, o.memory_limit_gb);
+  o.vtu_option = "--vtu";
+  o.png_option = "-o";
   return [args] { return run_diffuse(*args); };
 }
 

@@ -7,7 +7,8 @@
 #include "app/commands.hpp"
 #include "app/mesh_options.hpp"
 #include "io/features_json.hpp"
-#include "io/output_file.hpp"
+#include "app/messages.hpp"
+#include "app/outputs.hpp"
 #include "io/soup_json.hpp"
 #include "io/soup_svg.hpp"
 #include "pipeline/pipeline.hpp"
@@ -25,14 +26,15 @@ struct FeaturesArgs {
 
 int run_features(const FeaturesArgs& args) {
   if (!parameters_valid(args.parameters)) return kUsage;
+  if (!outputs_distinct({{"input", args.input}}, {{"-o", args.output_json}, {"--svg", args.output_svg}})) return kUsage;
   pipeline::RunOptions run;
   run.stop_after = args.processed ? pipeline::Stage::features : pipeline::Stage::read;
-  run.warn = [&](const std::string& w) { std::cerr << "curvemesh: " << args.input << ": warning: " << w << "\n"; };
+  run.warn = [&](const std::string& w) { warn(args.input, w); };
   pipeline::Result r;
   try {
     r = pipeline::run(pipeline::Source::file(args.input), args.parameters, run);
   } catch (const Error& e) {
-    std::cerr << "curvemesh: " << e.what() << "\n";
+    say(e.what());
     return exit_code(e);
   }
 
@@ -44,14 +46,10 @@ int run_features(const FeaturesArgs& args) {
   } else if (!args.output_svg.empty()) {
     drawing = io::soup_to_svg(r.soup);
   }
-  try {
-    io::write_file_atomically(args.output_json, json.dump(1) + "\n");
-    if (!args.output_svg.empty()) io::write_file_atomically(args.output_svg, drawing);
-  } catch (const io::OutputError& e) {
-    std::cerr << "curvemesh: " << e.what() << "\n";
-    return kInvalidInput;
-  }
-  return kOk;
+  return write_together([&](base::OutputFiles& out) {
+    out.add(args.output_json, json.dump(1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n");
+    if (!args.output_svg.empty()) out.add(args.output_svg, drawing);
+  });
 }
 }  // namespace
 

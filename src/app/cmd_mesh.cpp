@@ -10,9 +10,11 @@
 
 #include "app/commands.hpp"
 #include "app/mesh_options.hpp"
+#include "app/messages.hpp"
+#include "app/outputs.hpp"
 #include "app/progress.hpp"
+#include "base/text.hpp"
 #include "io/msh_writer.hpp"
-#include "io/output_file.hpp"
 #include "io/vtu_writer.hpp"
 #include "pipeline/output.hpp"
 #include "pipeline/pipeline.hpp"
@@ -25,6 +27,7 @@ struct MeshArgs {
   std::string input, output_msh, output_svg, output_vtu, output_stats, stop_after, domain = "box";
   bool verbose = false, quiet = false, regions = false;
   int msh_version = 41;
+  double memory_limit_gb = 0;
   pipeline::Parameters parameters;
 };
 
@@ -43,9 +46,24 @@ void summarize(const MeshArgs& args, const pipeline::Result& r, double seconds) 
                   mesh["triangles"].get<int>(), mesh["max_amips"].get<double>(),
                   mesh["min_angle_deg"].get<double>(), seconds);
   }
-  std::cout << "curvemesh: wrote " << args.output_msh << ": " << line;
+  std::cout << "curvemesh: wrote " << base::printable(args.output_msh) << ": " << line;
   if (r.stats.contains("regions")) std::cout << ", " << r.stats["regions"].size() << " regions";
   std::cout << "\n";
+}
+
+// The mesh, its drawing, VTU and statistics, written together or not at all.
+int write_mesh(const MeshArgs& args, pipeline::Result& r) {
+  return write_together([&](base::OutputFiles& out) {
+    const auto t = std::chrono::steady_clock::now();
+    // The plain high-order mesh, made once for both files (what pipeline::write_msh and
+    // write_vtu write).
+    const io::HighOrderMesh mesh = pipeline::high_order_mesh(r);
+    out.add(args.output_msh, io::msh_string(mesh, io::MshOptions{args.msh_version}));
+    if (!args.output_vtu.empty()) out.add(args.output_vtu, io::vtu_string(mesh, pipeline::cell_data(r)));
+    if (!args.output_svg.empty()) out.add(args.output_svg, pipeline::mesh_svg(r));
+    r.stats["seconds"]["write"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    if (!args.output_stats.empty()) out.add(args.output_stats, pipeline::stats_text(r));
+  });
 }
 
 int run_mesh(const MeshArgs& args) {
@@ -53,16 +71,20 @@ int run_mesh(const MeshArgs& args) {
   pipeline::RunOptions run;
   if (!args.stop_after.empty()) run.stop_after = *pipeline::stage_named(args.stop_after);
   if (args.parameters.linear && run.stop_after == pipeline::Stage::curve && !args.stop_after.empty()) {
-    std::cerr << "curvemesh: --stop-after curve makes no sense with --linear\n";
+    say("--stop-after curve makes no sense with --linear");
     return kUsage;
   }
   if (!parameters_valid(args.parameters)) return kUsage;
+  if (!outputs_distinct({{"input", args.input}}, {{"-o", args.output_msh},
+                                                  {"--vtu", args.output_vtu},
+                                                  {"--svg", args.output_svg},
+                                                  {"--stats", args.output_stats}}))
+    return kUsage;
+  limit_memory(args.memory_limit_gb);
   if (args.verbose) run.log = &std::cerr;
   run.regions = args.regions;
   run.domain = *regions::domain_named(args.domain);  // CLI checked the name
-  run.warn = [&](const std::string& w) {
-    std::cerr << "curvemesh: " << args.input << ": warning: " << w << "\n";
-  };
+  run.warn = [&](const std::string& w) { warn(args.input, w); };
 
   pipeline::Result r;
   try {
@@ -73,24 +95,10 @@ int run_mesh(const MeshArgs& args) {
     }
     r = pipeline::run(pipeline::Source::file(args.input), args.parameters, run);
   } catch (const Error& e) {
-    std::cerr << "curvemesh: " << e.what()
-              << (e.kind() == Error::Kind::internal ? "; no mesh written\n" : "\n");
+    say(std::string(e.what()) + (e.kind() == Error::Kind::internal ? "; no mesh written" : ""));
     return exit_code(e);
   }
-  try {
-    const auto t = std::chrono::steady_clock::now();
-    // The plain high-order mesh, made once for both files (what pipeline::write_msh and
-    // write_vtu write).
-    const io::HighOrderMesh out = pipeline::high_order_mesh(r);
-    io::write_msh(out, args.output_msh, io::MshOptions{args.msh_version});
-    if (!args.output_vtu.empty()) io::write_vtu(out, args.output_vtu, pipeline::cell_data(r));
-    if (!args.output_svg.empty()) pipeline::write_svg(r, args.output_svg);
-    r.stats["seconds"]["write"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-    if (!args.output_stats.empty()) io::write_file_atomically(args.output_stats, r.stats.dump(1) + "\n");
-  } catch (const io::OutputError& e) {
-    std::cerr << "curvemesh: " << e.what() << "\n";
-    return kInvalidInput;
-  }
+  if (const int written = write_mesh(args, r); written != kOk) return written;
   if (!args.quiet)
     summarize(args, r, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return kOk;
@@ -111,8 +119,10 @@ Runner add_mesh_command(CLI::App& app) {
       "boundary; with --linear, straight 3-node triangles. Prints one line on success (what was written, "
       "triangles, worst AMIPS energy, smallest scaled Jacobian, seconds). Lengths are relative to the "
       "diagonal d of the drawing's bounding box.\n"
-      "Exit codes: 0 success, 1 invalid input or an unwritable output, 2 usage error, 3 internal "
-      "failure (a mesh that could not be certified; nothing is written).");
+      "Every output is written whole or not at all, never over the input: when one of them cannot be "
+      "written, none is left. Exit codes: 0 success, 1 invalid input, a limit reached (see the --max-* "
+      "options) or an unwritable output, 2 usage error (also an output that is the input, or two outputs "
+      "naming one file), 3 internal failure (a mesh that could not be certified; nothing is written).");
   cmd->add_option("input", args->input, "SVG or .poly file to mesh")->required();
   cmd->add_option("-o,--output", args->output_msh, "Gmsh .msh file to write")->required();
   cmd->add_option(
@@ -143,6 +153,7 @@ Runner add_mesh_command(CLI::App& app) {
          "mesh) or curve (default; optimize with --linear)")
       ->check(CLI::IsMember({"triangulate", "optimize", "curve"}));
   add_mesh_options(*cmd, args->parameters, args->msh_version);
+  add_memory_limit_option(*cmd, args->memory_limit_gb);
   cmd->add_flag("-v,--verbose", args->verbose,
                 "report each optimization pass on stderr (triangles, min angle, max AMIPS)");
   cmd->add_flag(

@@ -5,8 +5,8 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -19,7 +19,9 @@
 
 #include "app/batch_status.hpp"
 #include "app/commands.hpp"
-#include "io/output_file.hpp"
+#include "app/messages.hpp"
+#include "app/outputs.hpp"
+#include "base/text.hpp"
 
 namespace curvemesh::app {
 
@@ -89,17 +91,21 @@ class ReportError : public std::runtime_error {
 // written when its batch was killed (its node failed, say): it is left out and counted in `cut_short`,
 // and that drawing is missing, as if it had not run. Any other line that is not a report line is an
 // error.
+// A report of a whole collection is a few MB; far beyond, the file is not one.
+constexpr std::uint64_t kMaxReportBytes = std::uint64_t(1) << 30;
+
 std::vector<Entry> read_reports(const std::vector<std::string>& files, std::size_t& duplicates,
                                 std::size_t& cut_short) {
   std::map<std::string, Entry> by_path;
   duplicates = 0;
   cut_short = 0;
   for (const std::string& file : files) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw ReportError(file + ": cannot read");
-    std::stringstream whole;
-    whole << in.rdbuf();
-    const std::string content = whole.str();
+    std::string content;
+    try {
+      content = base::read_input_file(file, kMaxReportBytes, "");
+    } catch (const base::InputFileError& e) {
+      throw ReportError(e.what());
+    }
     std::size_t start = 0;
     for (int number = 1; start < content.size(); ++number) {
       const std::size_t end = content.find('\n', start);
@@ -110,8 +116,7 @@ std::vector<Entry> read_reports(const std::vector<std::string>& files, std::size
       const std::string where = file + ":" + std::to_string(number) + ": ";
       const Json line = Json::parse(text, nullptr, false);
       if (!terminated && (line.is_discarded() || !line.is_object())) {
-        std::cerr << "curvemesh: warning: " << where
-                  << "the last line is cut short (its batch was killed while writing it); left out\n";
+        say("warning: " + where + "the last line is cut short (its batch was killed while writing it); left out");
         ++cut_short;
         continue;
       }
@@ -222,16 +227,16 @@ void print_text(const Summary& s, std::size_t files, std::ostream& out) {
     for (const Entry* e : s.slowest) {
       char b[96];
       std::snprintf(b, sizeof b, "  %9.3f s %8.1f MB  %-14s ", e->seconds, e->peak_mb, e->status.c_str());
-      out << b << e->path << "\n";
+      out << b << base::printable(e->path) << "\n";
     }
   }
   if (!s.causes.empty()) {
     out << "failures by cause:\n";
     for (const Cause& c : s.causes) {
-      out << "  " << c.status << ", " << c.drawings.size()
-          << (c.drawings.size() == 1 ? " drawing: " : " drawings: ") << c.text << "\n";
+      out << "  " << base::printable(c.status) << ", " << c.drawings.size()
+          << (c.drawings.size() == 1 ? " drawing: " : " drawings: ") << base::printable(c.text) << "\n";
       const std::size_t shown = std::min<std::size_t>(c.drawings.size(), 10);
-      for (std::size_t i = 0; i < shown; ++i) out << "    " << c.drawings[i]->path << "\n";
+      for (std::size_t i = 0; i < shown; ++i) out << "    " << base::printable(c.drawings[i]->path) << "\n";
       if (shown < c.drawings.size()) out << "    ... and " << c.drawings.size() - shown << " more\n";
     }
   }
@@ -452,23 +457,19 @@ std::string html_page(const Summary& s, const std::vector<std::string>& files) {
 }
 
 int run_report(const ReportArgs& args) {
+  std::vector<base::NamedPath> inputs;
+  for (const std::string& input : args.inputs) inputs.push_back({"input", input});
+  if (!outputs_distinct(inputs, {{"--html", args.html}})) return kUsage;
   Summary s;
   try {
     s = summarize(args.inputs);
   } catch (const ReportError& e) {
-    std::cerr << "curvemesh: " << e.what() << "\n";
+    say(e.what());
     return kInvalidInput;
   }
   print_text(s, args.inputs.size(), std::cout);
-  if (!args.html.empty()) {
-    try {
-      io::write_file_atomically(args.html, html_page(s, args.inputs));
-    } catch (const io::OutputError& e) {
-      std::cerr << "curvemesh: " << e.what() << "\n";
-      return kInvalidInput;
-    }
-  }
-  return kOk;
+  if (args.html.empty()) return kOk;
+  return write_together([&](base::OutputFiles& out) { out.add(args.html, html_page(s, args.inputs)); });
 }
 
 }  // namespace

@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
+#include "app/messages.hpp"
 #include "app/solve_common.hpp"
 #include "fem/elastic.hpp"
 #include "fem/output.hpp"
-#include "io/output_file.hpp"
 
 namespace curvemesh::app {
 
@@ -59,7 +59,9 @@ int run_elastic(const ElasticArgs& args) {
     return kUsage;
   }
   int code = kOk;
-  std::optional<Problem> p = prepare_problem(args.solve, &code);
+  SolveOptions solve = args.solve;
+  solve.other_outputs = {{"--deformed", args.output_deformed}};
+  std::optional<Problem> p = prepare_problem(solve, &code);
   if (!p) return code;
   const double d = p->drawing.diagonal;
   const fem::Geometry geometry(p->mesh);
@@ -139,8 +141,7 @@ int run_elastic(const ElasticArgs& args) {
   if (!args.probe.empty() && !probe_found)
     std::cerr << "curvemesh: --probe (" << args.probe[0] << ", " << args.probe[1] << ") is not in the body\n";
   if (!r.converged) {
-    std::cerr << "curvemesh: " << args.solve.input << ": Newton's method failed: " << r.failure
-              << "; try more --load-steps or a smaller --gravity\n";
+    say(args.solve.input + ": Newton's method failed: " + r.failure + "; try more --load-steps or a smaller --gravity");
     return kInvalidInput;
   }
 
@@ -150,18 +151,12 @@ int run_elastic(const ElasticArgs& args) {
   std::optional<fem::Image> picture;
   if (!args.solve.output_png.empty())
     picture = draw(geometry, space, r.displacement, *deformed, p->view, args.solve.width);
-  const int written =
-      write_outputs(args.solve, p->mesh, {{"displacement", 3, displacement}}, picture ? &*picture : nullptr);
-  if (written != kOk) return written;
-  if (!args.output_deformed.empty()) {
-    try {
-      io::write_vtu(deformed->mesh, args.output_deformed, {}, {{"displacement", 3, deformed->displacement}});
-    } catch (const io::OutputError& e) {
-      std::cerr << "curvemesh: " << e.what() << "\n";
-      return kInvalidInput;
-    }
-  }
-  return kOk;
+  std::vector<OtherFile> others;
+  if (!args.output_deformed.empty())
+    others.push_back({args.output_deformed,
+                      io::vtu_string(deformed->mesh, {}, {{"displacement", 3, deformed->displacement}})});
+  return write_outputs(args.solve, p->mesh, {{"displacement", 3, displacement}}, picture ? &*picture : nullptr,
+                       others);
 }
 
 }  // namespace

@@ -10,7 +10,6 @@
 #include "app/solve_common.hpp"
 #include "fem/inflate.hpp"
 #include "fem/output.hpp"
-#include "io/output_file.hpp"
 
 namespace curvemesh::app {
 
@@ -24,7 +23,9 @@ struct InflateArgs {
 
 int run_inflate(const InflateArgs& args) {
   int code = kOk;
-  std::optional<Problem> p = prepare_problem(args.solve, &code);
+  SolveOptions solve = args.solve;
+  solve.other_outputs = {{"--surface", args.output_surface}};
+  std::optional<Problem> p = prepare_problem(solve, &code);
   if (!p) return code;
   const fem::Geometry geometry(p->mesh);
   const fem::Space space(p->mesh, 2);
@@ -43,19 +44,13 @@ int run_inflate(const InflateArgs& args) {
       return fem::colour_map(fem::value_at(space, r.height, t, xi) / hi);
     });
   }
-  if (const int c = write_outputs(args.solve, p->mesh, {{"height", 1, z}}, picture ? &*picture : nullptr); c != kOk)
-    return c;
+  std::vector<OtherFile> others;
   if (!args.output_surface.empty()) {
     const bool ply = args.output_surface.size() >= 4 &&
                      args.output_surface.compare(args.output_surface.size() - 4, 4, ".ply") == 0;
-    try {
-      io::write_file_atomically(args.output_surface, ply ? fem::surface_ply(p->mesh, z) : fem::surface_obj(p->mesh, z));
-    } catch (const io::OutputError& e) {
-      std::cerr << "curvemesh: " << e.what() << "\n";
-      return kInvalidInput;
-    }
+    others.push_back({args.output_surface, ply ? fem::surface_ply(p->mesh, z) : fem::surface_obj(p->mesh, z)});
   }
-  return kOk;
+  return write_outputs(args.solve, p->mesh, {{"height", 1, z}}, picture ? &*picture : nullptr, others);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "app/commands.hpp"
+#include "app/messages.hpp"
 #include "app/solve_common.hpp"
 #include "fem/domain.hpp"
 #include "fem/output.hpp"
@@ -67,15 +68,13 @@ int run_stokes(const StokesArgs& args) {
         walls.edges.emplace_back(t, e);  // top or bottom; the right side is the natural outflow
     }
   if (inflow.edges.empty())
-    std::cerr
-        << "curvemesh: " << args.solve.input
-        << ": warning: the domain does not reach the box's left side; with no inflow the fluid is at rest\n";
+    warn(args.solve.input, "the domain does not reach the box's left side; with no inflow the fluid is at rest");
 
   fem::StokesResult r;
   try {
     r = fem::stokes(geometry, velocity, pressure, {inflow, walls}, args.stokes);
   } catch (const std::runtime_error& e) {
-    std::cerr << "curvemesh: " << args.solve.input << ": " << e.what() << "\n";
+    say(args.solve.input + ": " + e.what());
     return kInternal;
   }
   const std::vector<double> uv = fem::values_at_nodes(geometry, velocity, r.velocity, 2);

@@ -4,10 +4,12 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <new>
 #include <sstream>
 #include <string>
 
 #include "app/commands.hpp"
+#include "app/messages.hpp"
 
 namespace {
 
@@ -53,8 +55,11 @@ int main(int argc, char** argv) {
   }
   try {
     for (const CLI::App* sub : app.get_subcommands()) return runners.at(sub)();
+  } catch (const std::bad_alloc&) {
+    say(out_of_memory_message());
+    return kInvalidInput;
   } catch (const std::exception& e) {
-    std::cerr << "curvemesh: internal error (this is a bug): " << e.what() << "\n";
+    say(std::string("internal error (this is a bug): ") + e.what());
     return kInternal;
   }
   return kUsage;

@@ -1,10 +1,58 @@
 #include "app/mesh_options.hpp"
 
+#include <sys/resource.h>
+
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <iostream>
+#include <limits>
 #include <map>
 
+#include "app/messages.hpp"
+
 namespace curvemesh::app {
+
+namespace {
+
+// What a drawing may cost (curvemesh::Limits): refused beyond, with exit 1.
+void add_limit_options(CLI::App& cmd, Limits& l) {
+  const auto count = CLI::Range(std::size_t(1), std::numeric_limits<std::size_t>::max());
+  cmd.add_option("--max-input-mb", l.max_input_mb,
+                 "refuse an input file larger than this many MiB (and any that is not a regular file)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--max-elements", l.max_elements,
+                 "refuse a drawing with more SVG elements than this, each instance of a <use> counted")
+      ->capture_default_str()
+      ->check(count);
+  cmd.add_option("--max-curves", l.max_curves,
+                 "refuse a drawing with more cubic curves than this, after <use> and path data")
+      ->capture_default_str()
+      ->check(count);
+  cmd.add_option("--max-triangles", l.max_triangles,
+                 "refuse a drawing whose mesh has more triangles than this at any stage (curves crossing "
+                 "everywhere, a tiny --edge-length); with the other limits' defaults, a run stays under "
+                 "about 2 GB of memory")
+      ->capture_default_str()
+      ->check(count);
+}
+
+}  // namespace
+
+void add_memory_limit_option(CLI::App& cmd, double& gigabytes) {
+  cmd.add_option("--memory-limit", gigabytes,
+                 "address space of the run in GB (2^30 bytes; setrlimit RLIMIT_AS): reaching it ends the run with "
+                 "exit 1, out of memory, and nothing written (default: no limit)")
+      ->check(CLI::Range(0.1, 1e6));
+}
+
+void limit_memory(double gigabytes) {
+  if (!(gigabytes > 0)) return;
+  rlimit limit{};
+  ::getrlimit(RLIMIT_AS, &limit);
+  limit.rlim_cur = std::min<rlim_t>(static_cast<rlim_t>(gigabytes * 1073741824.0), limit.rlim_max);
+  ::setrlimit(RLIMIT_AS, &limit);
+}
 
 void add_feature_options(CLI::App& cmd, pipeline::Parameters& p) {
   cmd.add_option("--mu", p.mu_rel,
@@ -42,6 +90,7 @@ void add_feature_options(CLI::App& cmd, pipeline::Parameters& p) {
          "each other become isolated points, curves within it of a line become straight")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  add_limit_options(cmd, p.limits);
 }
 
 std::vector<const CLI::Option*> add_mesh_options(CLI::App& cmd, pipeline::Parameters& p, int& msh_version) {
@@ -84,7 +133,7 @@ bool parameters_valid(const pipeline::Parameters& p) {
     p.validate();
     return true;
   } catch (const Error& e) {
-    std::cerr << "curvemesh: " << e.what() << "\n";
+    say(e.what());
     return false;
   }
 }

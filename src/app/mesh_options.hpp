@@ -13,8 +13,15 @@ class Option;
 
 namespace curvemesh::app {
 
-// --mu, --epsilon, -l/--edge-length, --min-edge-length, --min-angle, --junction-angle, --eps-m.
+// --mu, --epsilon, -l/--edge-length, --min-edge-length, --min-angle, --junction-angle, --eps-m,
+// and the limits (--max-input-mb, --max-elements, --max-curves, --max-triangles).
 void add_feature_options(CLI::App& cmd, pipeline::Parameters& parameters);
+
+// --memory-limit GB: the process's address space (setrlimit RLIMIT_AS), as batch sets its
+// children's; 0 (the default) leaves it as it is.
+void add_memory_limit_option(CLI::App& cmd, double& gigabytes);
+// Applies it; a run that reaches it ends with exit 1 ("out of memory", main.cpp).
+void limit_memory(double gigabytes);
 
 // --linear, --msh-version, the feature options, --max-iterations, --stop-amips, --box-margin,
 // --curved-stop-amips, --max-curved-passes. Returns the options it registered, in order.

@@ -5,10 +5,12 @@
 #include <cstdio>
 #include <iostream>
 
+#include "base/text.hpp"
+
 namespace curvemesh::app {
 
 ProgressDisplay::ProgressDisplay(std::string input, double after_seconds)
-    : input_(std::move(input)), after_(after_seconds), terminal_(::isatty(STDERR_FILENO) == 1) {
+    : input_(base::printable(input)), after_(after_seconds), terminal_(::isatty(STDERR_FILENO) == 1) {
   clock_ = std::thread([this] { tick(); });
 }
 

@@ -2,12 +2,15 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cstdint>
 #include <iostream>
 
 #include "app/commands.hpp"
 #include "app/mesh_options.hpp"
+#include "app/messages.hpp"
+#include "app/outputs.hpp"
 #include "app/progress.hpp"
-#include "io/output_file.hpp"
+#include "base/text.hpp"
 #include "pipeline/output.hpp"
 
 namespace curvemesh::app {
@@ -28,25 +31,48 @@ void add_solve_options(CLI::App& cmd, SolveOptions& o, const std::string& defaul
       ->capture_default_str()
       ->check(CLI::IsMember({"inside", "evenodd", "outside", "filled", "all", "box"}));
   add_feature_options(cmd, o.parameters);
+  add_memory_limit_option(cmd, o.memory_limit_gb);
 }
 
+namespace {
+
+// Whether the picture asked for fits fem::kMaxPicturePixels; if not, says so.
+bool picture_fits(const SolveOptions& o, const io::HighOrderMesh& mesh, const char* done) {
+  if (o.output_png.empty()) return true;
+  geometry::Box2 view;
+  for (const geometry::Vec2& x : mesh.nodes) view.add(x);
+  const auto [width, height] = fem::picture_size(view, o.width);
+  if (std::int64_t(width) * height <= fem::kMaxPicturePixels) return true;
+  say(o.input + ": a picture " + std::to_string(width) + " pixels wide would be " + std::to_string(height) +
+      " high, more than the limit of " + std::to_string(fem::kMaxPicturePixels) + " pixels (--width lowers it); nothing " +
+      done);
+  return false;
+}
+
+}  // namespace
+
 std::optional<fem::MeshedDrawing> mesh_for_solving(const SolveOptions& o, const char* done, int* exit_code) {
+  *exit_code = kUsage;
+  if (!parameters_valid(o.parameters)) return std::nullopt;
+  std::vector<base::NamedPath> outputs = {{o.vtu_option, o.output_vtu}, {o.png_option, o.output_png}};
+  outputs.insert(outputs.end(), o.other_outputs.begin(), o.other_outputs.end());
+  if (!outputs_distinct({{"input", o.input}}, outputs)) return std::nullopt;
   *exit_code = kOk;
-  if (!parameters_valid(o.parameters)) {
-    *exit_code = kUsage;
-    return std::nullopt;
-  }
+  limit_memory(o.memory_limit_gb);
   pipeline::Parameters curved = o.parameters;
   curved.linear = false;  // --linear solves on the straight map of the curved mesh
   pipeline::RunOptions run;
-  run.warn = [&](const std::string& w) { std::cerr << "curvemesh: " << o.input << ": warning: " << w << "\n"; };
+  run.warn = [&](const std::string& w) { warn(o.input, w); };
   run.regions = o.domain == "filled";  // the fills classified: meshed_drawing keeps them
   try {
     ProgressDisplay display(o.input);
     run.progress = [&](const pipeline::Progress& p) { display(p); };
-    return pipeline::meshed_drawing(pipeline::run(pipeline::Source::file(o.input), curved, run));
+    fem::MeshedDrawing drawing = pipeline::meshed_drawing(pipeline::run(pipeline::Source::file(o.input), curved, run));
+    if (picture_fits(o, drawing.mesh, done)) return drawing;
+    *exit_code = kInvalidInput;
+    return std::nullopt;
   } catch (const Error& e) {
-    std::cerr << "curvemesh: " << e.what() << "; nothing " << done << "\n";
+    say(std::string(e.what()) + "; nothing " + done);
     *exit_code = app::exit_code(e);
     return std::nullopt;
   }
@@ -69,22 +95,22 @@ std::optional<Problem> prepare_problem(const SolveOptions& o, int* exit_code) {
     for (char& k : keep) k = !k;
   const int kept = static_cast<int>(std::count(keep.begin(), keep.end(), 1));
   if (kept == 0) {
-    std::cerr << "curvemesh: " << o.input << ": the domain '" << o.domain << "' is empty ("
-              << (o.domain == "filled" ? "nothing of the drawing is filled" : "no region of the drawing is enclosed by its curves")
-              << "); try --domain all\n";
+    say(o.input + ": the domain '" + o.domain + "' is empty (" +
+        (o.domain == "filled" ? "nothing of the drawing is filled" : "no region of the drawing is enclosed by its curves") +
+        "); try --domain all");
     *exit_code = kInvalidInput;
     return std::nullopt;
   }
   p.mesh = regions::submesh(whole, keep, &p.line_origin);
   if (o.linear) p.mesh = fem::straight_mesh(p.mesh);
-  std::cerr << "curvemesh: meshed " << o.input << " in " << p.drawing.seconds << " s: " << p.mesh.triangle_count()
+  std::cerr << "curvemesh: meshed " << base::printable(o.input) << " in " << p.drawing.seconds << " s: " << p.mesh.triangle_count()
             << " triangles in the domain (" << (o.linear ? "straight" : "cubic") << " map)\n";
   return p;
 }
 
 int write_outputs(const SolveOptions& o, const io::HighOrderMesh& mesh, const std::vector<io::VtuPointArray>& arrays,
-                  const fem::Image* picture) {
-  try {
+                  const fem::Image* picture, const std::vector<OtherFile>& others) {
+  return write_together([&](base::OutputFiles& out) {
     if (!o.output_vtu.empty()) {
       // Only the nodes some triangle uses (a straight map leaves the cubic nodes unused).
       std::vector<int> node_origin;
@@ -98,14 +124,11 @@ int write_outputs(const SolveOptions& o, const io::HighOrderMesh& mesh, const st
           for (int c = 0; c < a.components; ++c) values.push_back(a.values[std::size_t(i) * a.components + c]);
         a.values = std::move(values);
       }
-      io::write_vtu(used, o.output_vtu, {}, kept);
+      out.add(o.output_vtu, io::vtu_string(used, {}, kept));
     }
-    if (picture && !o.output_png.empty()) fem::write_png(*picture, o.output_png);
-  } catch (const io::OutputError& e) {
-    std::cerr << "curvemesh: " << e.what() << "\n";
-    return kInvalidInput;
-  }
-  return kOk;
+    if (picture && !o.output_png.empty()) out.add(o.output_png, fem::png_bytes(*picture));
+    for (const auto& [path, content] : others) out.add(path, content);
+  });
 }
 
 }  // namespace curvemesh::app

@@ -123,7 +123,7 @@ std::string read_input_file(const std::string& path, std::uint64_t max_bytes, co
   if (!S_ISREG(st.st_mode)) throw InputFileError(path + ": is " + kind_of(st.st_mode) + ", not a regular file");
   const auto too_large = [&](std::uint64_t size) {
     return InputFileError(path + ": the file is larger than the limit of " + mebibytes(max_bytes) + " (" +
-                          mebibytes(size) + "; " + limit_option + " raises it)");
+                          mebibytes(size) + (limit_option.empty() ? "" : "; " + limit_option + " raises it") + ")");
   };
   if (static_cast<std::uint64_t>(st.st_size) > max_bytes) throw too_large(static_cast<std::uint64_t>(st.st_size));
   std::string text(static_cast<std::size_t>(st.st_size), '\0');
@@ -221,7 +221,7 @@ std::string output_clash(const std::vector<NamedPath>& inputs, const std::vector
     struct stat st {};
     if (::stat(in.second.c_str(), &st) == 0) read.push_back({{st.st_dev, st.st_ino}, &in});
   }
-  std::map<std::string, std::string> written;  // file -> the option that names it
+  std::map<std::string, const NamedPath*> written;  // file -> the output that names it
   for (const NamedPath& out : outputs) {
     struct stat st {};
     bool character_device = false;
@@ -230,8 +230,8 @@ std::string output_clash(const std::vector<NamedPath>& inputs, const std::vector
       if ((follow ? ::stat(out.second.c_str(), &st) : ::lstat(out.second.c_str(), &st)) != 0) continue;
       for (const auto& [identity, in] : read)
         if (identity.dev == st.st_dev && identity.ino == st.st_ino)
-          return out.second + " (" + out.first + ") is the input " + in->second + " (" + in->first +
-                 "): refusing to write over an input";
+          return out.first + " " + out.second + " is the same file as the " + in->first + " " + in->second +
+                 ": refusing to write over an input";
       character_device = S_ISCHR(st.st_mode);
       key = std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino);
     }
@@ -240,8 +240,9 @@ std::string output_clash(const std::vector<NamedPath>& inputs, const std::vector
       std::error_code ec;
       key = fs::weakly_canonical(fs::absolute(out.second, ec), ec).string();
     }
-    if (const auto [it, added] = written.emplace(key, out.first); !added)
-      return out.second + " is named by two outputs (" + it->second + " and " + out.first + ")";
+    if (const auto [it, added] = written.emplace(key, &out); !added)
+      return it->second->first + " " + it->second->second + " and " + out.first + " " + out.second +
+             " name the same file";
   }
   return {};
 }

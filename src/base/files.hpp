@@ -26,7 +26,7 @@ class OutputError : public std::runtime_error {
 };
 
 // The whole of a regular file of at most `max_bytes` bytes (beyond it, the message names
-// `limit_option`, the option that raises the limit). Opened without blocking (a FIFO is refused,
+// `limit_option`, the option that raises the limit, when there is one). Opened without blocking (a FIFO is refused,
 // not waited on) and read through the descriptor that was checked.
 std::string read_input_file(const std::string& path, std::uint64_t max_bytes, const std::string& limit_option);
 

@@ -5,10 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <memory>
-
-#include "io/output_file.hpp"
+#include <stdexcept>
+#include <string>
+#include <tuple>
 
 namespace curvemesh::fem {
 
@@ -44,9 +43,10 @@ Image rasterize(const Geometry& geometry, const geometry::Box2& view, int width,
                 const std::function<Rgb(int t, const Vec2& xi)>& colour, Rgb background) {
   Image img;
   const Vec2 size = view.max - view.min;
-  img.width = std::max(1, width);
+  std::tie(img.width, img.height) = picture_size(view, width);
+  if (std::int64_t(img.width) * img.height > kMaxPicturePixels)
+    throw std::length_error("a picture of more than " + std::to_string(kMaxPicturePixels) + " pixels");
   const double pixel = size.x() / img.width;
-  img.height = std::max(1, static_cast<int>(std::lround(size.y() / pixel)));
   img.rgb.assign(std::size_t(img.width) * img.height * 3, 0);
   std::vector<char> done(std::size_t(img.width) * img.height, 0);
   auto put = [&](int px, int py, const Rgb& c) {
@@ -174,24 +174,28 @@ std::string surface_ply(const io::HighOrderMesh& mesh, const std::vector<double>
   return s;
 }
 
-void write_png(const Image& image, const std::string& path) {
-  // Written next to the target and renamed, as every output (io/output_file.hpp).
-  const std::string temporary = path + ".tmp";
-  std::unique_ptr<FILE, int (*)(FILE*)> file(std::fopen(temporary.c_str(), "wb"), &std::fclose);
-  if (!file) throw io::OutputError("cannot write " + path);
+namespace {
+
+// libpng's sink: the bytes appended to the string it was given.
+void append_png(png_structp png, png_bytep data, png_size_t length) {
+  static_cast<std::string*>(png_get_io_ptr(png))->append(reinterpret_cast<const char*>(data), length);
+}
+
+}  // namespace
+
+std::string png_bytes(const Image& image) {
+  std::string out;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   if (!png || !info) {
     png_destroy_write_struct(&png, &info);
-    throw io::OutputError("cannot write " + path + ": libpng failed to start");
+    throw std::runtime_error("libpng failed to start");
   }
   if (setjmp(png_jmpbuf(png))) {
     png_destroy_write_struct(&png, &info);
-    file.reset();
-    std::remove(temporary.c_str());
-    throw io::OutputError("cannot write " + path);
+    throw std::runtime_error("libpng failed to encode the picture");
   }
-  png_init_io(png, file.get());
+  png_set_write_fn(png, &out, &append_png, nullptr);
   png_set_IHDR(png, info, image.width, image.height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
@@ -199,11 +203,16 @@ void write_png(const Image& image, const std::string& path) {
     png_write_row(png, const_cast<png_bytep>(image.rgb.data() + std::size_t(y) * image.width * 3));
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
-  if (std::fflush(file.get()) != 0) throw io::OutputError("cannot write " + path);
-  file.reset();
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) throw io::OutputError("cannot write " + path + ": " + ec.message());
+  return out;
+}
+
+std::pair<int, int> picture_size(const geometry::Box2& view, int width) {
+  const geometry::Vec2 size = view.max - view.min;
+  const int w = std::max(1, width);
+  const double pixel = size.x() / w;
+  const double h = size.y() / pixel;
+  if (!(h < double(kMaxPicturePixels))) return {w, static_cast<int>(kMaxPicturePixels)};  // NaN too
+  return {w, std::max(1, static_cast<int>(std::lround(h)))};
 }
 
 }  // namespace curvemesh::fem

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fem/space.hpp"
@@ -29,8 +30,16 @@ struct Image {
   std::vector<std::uint8_t> rgb;  // 3 bytes per pixel, rows from the top
 };
 
+// The most pixels a picture may have (8192 x 8192): its memory, 4 bytes a pixel, stays at 256 MB.
+inline constexpr std::int64_t kMaxPicturePixels = std::int64_t(1) << 26;
+
+// The width and height of the picture of `view` at `width` pixels across (the height as the
+// drawing's aspect gives it, at most kMaxPicturePixels).
+std::pair<int, int> picture_size(const geometry::Box2& view, int width);
+
 // The picture of `view` (the drawing's user space, y down as in SVG) at `width` pixels across:
 // every pixel whose centre lies in a triangle takes colour(t, ξ); the others `background`.
+// Throws std::length_error above kMaxPicturePixels (callers check picture_size first).
 Image rasterize(const Geometry& geometry, const geometry::Box2& view, int width,
                 const std::function<Rgb(int t, const Vec2& xi)>& colour, Rgb background = {1, 1, 1});
 
@@ -43,7 +52,7 @@ Rgb colour_map(double s);
 std::string surface_obj(const io::HighOrderMesh& mesh, const std::vector<double>& z);
 std::string surface_ply(const io::HighOrderMesh& mesh, const std::vector<double>& z);
 
-// Throws io::OutputError when the file cannot be written.
-void write_png(const Image& image, const std::string& path);
+// The picture as a PNG file's bytes. Throws std::runtime_error when libpng fails.
+std::string png_bytes(const Image& image);
 
 }  // namespace curvemesh::fem

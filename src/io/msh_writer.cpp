@@ -71,15 +71,29 @@ void add_nodes(geometry::Box2& box, const HighOrderMesh& m, std::span<const int>
 
 constexpr int kLineType[] = {1, 8, 26}, kTriangleType[] = {2, 9, 21};
 
+// A physical name as the format can hold it between its double quotes on one line: a quote and the
+// control characters (an element's id may hold any of them) written as \xNN.
+std::string quotable(const std::string& name) {
+  std::string out;
+  for (const char c : name) {
+    const auto b = static_cast<unsigned char>(c);
+    if (c == '"' || b < 0x20 || b == 0x7f) {
+      char escape[5];
+      std::snprintf(escape, sizeof escape, "\\x%02x", b);
+      out += escape;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string msh_string(const HighOrderMesh& m, const MshOptions& options) {
   if (options.version != 41 && options.version != 22)
     throw std::logic_error("msh: unsupported version " + std::to_string(options.version));
   if (auto error = m.structure_error()) throw std::logic_error("msh: " + *error);
-  for (const auto& [key, name] : m.physical_names)
-    if (name.find_first_of("\"\n\r") != std::string::npos)
-      throw std::logic_error("msh: physical name " + name + " holds a quote or a line break");
 
   // Curve entities are tagged by their physical group (an unnamed group gets the next free
   // tag); surface entities are numbered from 1. All nodes sit on surface 1, so its box holds
@@ -122,7 +136,7 @@ std::string msh_string(const HighOrderMesh& m, const MshOptions& options) {
   for (const Group* g : element_groups) {
     const auto name = m.physical_names.find({g->dim, g->physical});
     if (g->physical > 0 && name != m.physical_names.end())
-      names.push_back(std::to_string(g->dim) + " " + std::to_string(g->physical) + " \"" + name->second +
+      names.push_back(std::to_string(g->dim) + " " + std::to_string(g->physical) + " \"" + quotable(name->second) +
                       "\"\n");
   }
   if (!names.empty()) {

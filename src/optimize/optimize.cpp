@@ -6,7 +6,9 @@
 #include <limits>
 #include <numbers>
 #include <queue>
+#include <string>
 
+#include "base/limits.hpp"
 #include "geometry/amips.hpp"
 #include "geometry/p3_triangle.hpp"
 #include "mesh/operations.hpp"
@@ -438,6 +440,9 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
     // Split long edges, longest first.
     {
       auto edges = edges_where(m, [&](const Edge& e) { return !(e.length <= 4.0 / 3.0 * edge_target(e.a, e.b)); });
+      // Each split adds two triangles (one on the box's side): refused before the mesh grows.
+      base::check_triangles(std::size_t(m.triangle_count()) + 2 * edges.size(), o.max_triangles,
+                            "to meet the edge length, " + std::to_string(edges.size()) + " edges would be split");
       std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.length > y.length; });
       for (const Edge& e : edges) {
         const int v = mesh::split_edge(m, c, e.a, e.b, o.stop_max_amips);

@@ -2,6 +2,8 @@
 // §4.1 second half: quality improvement of the linear mesh by TetWild's loop in 2D — split long
 // edges, collapse short ones, swap, smooth, project feature vertices onto their curves — under
 // the invariants of mesh/operations.hpp, with adaptive sizing where quality stalls.
+#include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <ostream>
 #include <string>
@@ -16,6 +18,8 @@ struct Options {
   double edge_length = 0;                // l: target edge length
   double min_edge_length = 0;            // l_m: adaptive sizing never asks for less
   int max_iterations = 0;                // §4.1: passes at most
+  // Refuse (base::LimitExceeded) a pass whose splits would take the mesh past this many triangles.
+  std::size_t max_triangles = SIZE_MAX;
   double stop_min_angle_deg = 0;         // α: stop once every angle is at least this ...
   double stop_max_amips = 0;             // ... or every AMIPS energy is at most this (TetWild)
   // Sizing: near two vertices that can never merge (a tight bend of a curve), the target is this

@@ -68,7 +68,7 @@ void write_vtu(const Result& r, const std::string& path) {
   io::write_vtu(high_order_mesh(r), path, cell_data(r));
 }
 
-void write_svg(const Result& r, const std::string& path) {
+std::string mesh_svg(const Result& r) {
   require_mesh(r);
   if (r.painted) {
     // Each triangle in the colour of the element painted on it; a paint server's (gradient,
@@ -80,10 +80,19 @@ void write_svg(const Result& r, const std::string& path) {
         const svg::Paint& paint = r.soup.fills[p.layer[t]].fill;
         fill[t] = paint.kind == svg::Paint::Kind::color ? paint.to_string() : "#d8d8d8";
       }
-    io::write_file_atomically(path, io::mesh_svg(p.mesh, fill));
-    return;
+    return io::mesh_svg(p.mesh, fill);
   }
-  io::write_file_atomically(path, r.curved ? io::mesh_svg(*r.curved) : io::mesh_svg(r.linear));
+  return r.curved ? io::mesh_svg(*r.curved) : io::mesh_svg(r.linear);
+}
+
+void write_svg(const Result& r, const std::string& path) {
+  io::write_file_atomically(path, mesh_svg(r));
+}
+
+std::string stats_text(const Result& r) {
+  // Names from the drawing (the input's path, regions' ids) are valid UTF-8 when the reader made
+  // them; a path from the command line need not be: replaced rather than refused.
+  return r.stats.dump(1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }
 
 std::vector<SideColours> curve_colours(const svg::FeatureSoup& soup) {

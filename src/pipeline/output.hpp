@@ -30,6 +30,10 @@ std::vector<int> line_curves(const Result& result, const io::HighOrderMesh& mesh
 void write_msh(const Result& result, const std::string& path, int version = 41);
 void write_vtu(const Result& result, const std::string& path);
 void write_svg(const Result& result, const std::string& path);
+// The SVG drawing write_svg writes.
+std::string mesh_svg(const Result& result);
+// The statistics as `mesh --stats` writes them: JSON, indented, ending in a newline.
+std::string stats_text(const Result& result);
 
 // Each soup curve's colour on its two sides: its data-color-left / data-color-right where given,
 // else its stroke colour, else its fill colour, else black.

@@ -77,6 +77,8 @@ Resolved resolve(const Parameters& p, double diagonal) {
   l.junction_angle_rad = radians(p.junction_angle_deg);
   l.features = p.features;
   r.triangulate.box_margin = std::max(p.box_margin_rel, 0.0) * r.d;
+  r.triangulate.max_triangles = p.limits.max_triangles;
+  r.optimize.max_triangles = p.limits.max_triangles;
   r.optimize.edge_length = l.edge;
   r.optimize.min_edge_length = l.min_edge;
   r.optimize.max_iterations = p.max_iterations;

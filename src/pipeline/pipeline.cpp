@@ -7,6 +7,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "base/limits.hpp"
 #include "features/poly_input.hpp"
 #include "io/curved_mesh.hpp"
 #include "svg/error.hpp"
@@ -238,7 +239,9 @@ Source Source::beziers(const std::vector<std::array<geometry::Vec2, 4>>& curves,
   return Source::curves(std::move(soup), std::move(name));
 }
 
-Result run(const Source& source, const Parameters& parameters, const RunOptions& options) {
+namespace {
+
+Result run_stages(const Source& source, const Parameters& parameters, const RunOptions& options) {
   parameters.validate();
   Result r;
   r.name = source.name;
@@ -366,6 +369,16 @@ Result run(const Source& source, const Parameters& parameters, const RunOptions&
                    " curved triangles could not be certified valid");
   paint(r, options, warn);
   return r;
+}
+
+}  // namespace
+
+Result run(const Source& source, const Parameters& parameters, const RunOptions& options) {
+  try {
+    return run_stages(source, parameters, options);
+  } catch (const base::LimitExceeded& e) {
+    throw invalid(source.name + ": " + e.what());
+  }
 }
 
 }  // namespace curvemesh::pipeline

@@ -42,9 +42,11 @@
 #include <cstring>
 #include <exception>
 #include <numeric>
+#include <string>
 #include <type_traits>
 #include <unordered_map>
 
+#include "base/limits.hpp"
 #include "triangulate/arrangement.hpp"
 
 namespace curvemesh::triangulate::detail {
@@ -152,6 +154,8 @@ class Builder {
  private:
   // Input points with the same coordinates are one vertex (fixed or isolated if any of them is).
   void unique_points() {
+    base::check_triangles(2 * in_.points.size(), in_.max_triangles,
+                          "the curves are cut into " + std::to_string(in_.points.size()) + " points");
     std::unordered_map<Vec2, int, PointHash, PointEqual> seen;
     seen.reserve(in_.points.size());
     point_node_.resize(in_.points.size());
@@ -199,7 +203,14 @@ class Builder {
       if (!is_end[p]) boxes.emplace_back(CGAL::Bbox_2(at(p).x(), at(p).y(), at(p).x(), at(p).y()), -1 - static_cast<int>(p));
 
     std::vector<std::pair<int, int>> pairs;
+    // Segments whose boxes overlap are a few per segment in a drawing; a soup of long curves
+    // across each other has quadratically many, each a likely crossing: bounded before they fill
+    // memory (8 per triangle allowed: 64 bytes).
+    const std::size_t max_pairs = in_.max_triangles > SIZE_MAX / 8 ? SIZE_MAX : 8 * in_.max_triangles;
     CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+      if (pairs.size() == max_pairs)
+        base::check_triangles(SIZE_MAX, in_.max_triangles,
+                              "more than " + std::to_string(max_pairs) + " pairs of the curves' segments lie across each other");
       pairs.emplace_back(std::max(x.info(), y.info()), std::min(x.info(), y.info()));
     });
     // The box intersection's order is not the same from run to run: sort for determinism.
@@ -247,6 +258,10 @@ class Builder {
     if (o3 * o4 > 0) return;
     if (o1 * o2 < 0 && o3 * o4 < 0) {  // a proper crossing: a new point
       const int node = static_cast<int>(points_.size() + crossings_.size());
+      // A triangulation of V vertices has about 2V triangles.
+      if (crossings_.size() % 1024 == 0)
+        base::check_triangles(2 * (points_.size() + crossings_.size()), in_.max_triangles,
+                              "the curves cross each other more than " + std::to_string(crossings_.size()) + " times");
       crossings_.push_back({s, q});
       const Interval t = crossing_parameter(S, Q);
       events_.push_back({s, node, t});

@@ -16,6 +16,8 @@
 //  - `triangulate_exact` hands everything to CGAL's constrained triangulation with exact
 //    constructions, which always succeeds but is several times slower on dense inputs.
 #include <array>
+#include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -43,6 +45,9 @@ struct InputConstraint {
 struct Input {
   std::vector<InputPoint> points;
   std::vector<InputConstraint> constraints;
+  // Refuse (base::LimitExceeded) an arrangement whose triangulation would have more triangles,
+  // before its crossings are found or its pairs of nearby segments listed beyond that size.
+  std::size_t max_triangles = SIZE_MAX;
 };
 
 struct ArrangementVertex {

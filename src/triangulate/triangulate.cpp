@@ -245,7 +245,8 @@ Result triangulate(const features::Features& features, const Options& options) {
   const auto start = std::chrono::steady_clock::now();
   Result result;
   result.box = outer_box(features, options);
-  const detail::Input input = make_input(features, result.box);
+  detail::Input input = make_input(features, result.box);
+  input.max_triangles = options.max_triangles;
   std::optional<detail::Triangulation> tri = detail::triangulate_arrangement(input);
   if (!tri) tri = detail::triangulate_exact(input);
   result.stats.method = tri->method;

@@ -8,7 +8,10 @@
 // beats box when inputs overlap), each vertex with how it may move later. Vertices whose exact
 // position rounds to doubles without inverting a triangle are rounded; the others keep their
 // rational position until the optimizer can round them (TetWild's hybrid kernel).
-// Never fails on finite input.
+// Never fails on finite input, but for a triangulation larger than Options::max_triangles.
+#include <cstddef>
+#include <cstdint>
+
 #include "features/features.hpp"
 #include "mesh/tri_mesh.hpp"
 
@@ -24,6 +27,8 @@ struct Options {
   // The outer box is the input's bounding box grown on every side by this length (a fraction of
   // its diagonal d), so that features never touch the box and the domain around them is meshed too.
   double box_margin = 0;
+  // Refuse (base::LimitExceeded) a triangulation of more triangles (Limits::max_triangles).
+  std::size_t max_triangles = SIZE_MAX;
 };
 
 struct Stats {

@@ -38,7 +38,7 @@ def run(*args):
 def mesh(name, source, *extra):
     out = os.path.join(tmp.name, name)
     r = run("mesh", source, "-o", out + ".msh", "--stats", out + ".json", "--vtu", out + ".vtu", "--svg",
-            out + ".svg", "-q", *extra)
+            out + ".mesh.svg", "-q", *extra)
     stats = {}
     if r.returncode == 0:
         with open(out + ".json") as f:
@@ -102,7 +102,7 @@ check("--regions: the .vtu carries each triangle's region and face",
       "region" in v.cell_data and "face" in v.cell_data
       and sorted(set(np.asarray(v.cell_data["region"][0]).astype(int))) == [g["physical"] for g in regions],
       list(v.cell_data))
-with open(out + ".svg") as f:
+with open(out + ".mesh.svg") as f:
     picture = f.read()
 check("--svg: triangles filled with the elements' colours",
       all(f'fill="{g["fill"]}"' in picture for g in regions[1:]), picture[:300])

@@ -190,8 +190,44 @@ def test_options_and_defaults():
     assert set(curvemesh.OPTIONS) == {
         "mu", "epsilon", "eps_m", "edge_length", "min_edge_length", "min_angle", "junction_angle", "linear",
         "max_iterations", "stop_amips", "box_margin", "curved_stop_amips", "max_curved_passes", "features",
+        "max_input_mb", "max_elements", "max_curves", "max_triangles",
     }
     assert curvemesh.OPTIONS["edge_length"] == 0.05 and curvemesh.OPTIONS["linear"] is False
+    assert curvemesh.OPTIONS["max_curves"] == 500000 and curvemesh.OPTIONS["max_triangles"] == 2000000
+
+
+def test_a_limit_reached_raises_the_command_lines_message(run_cli, tmp_path, examples):
+    svg = examples / "overlapping-shapes.svg"
+    for option, flag in (("max_curves", "--max-curves"), ("max_triangles", "--max-triangles")):
+        message = cli_message(run_cli, "mesh", svg, "-o", tmp_path / "limited.msh", flag, "3")
+        with pytest.raises(ValueError) as error:
+            curvemesh.mesh(svg, **{option: 3})
+        assert str(error.value) == message
+        assert flag in message
+    with pytest.raises(ValueError):
+        curvemesh.mesh(svg, max_curves=0)
+
+
+def test_a_path_with_a_nul_is_a_value_error_as_in_open(tmp_path, examples):
+    m = curvemesh.mesh(examples / "overlapping-shapes.svg", linear=True)
+    for path in (str(tmp_path / "out.vtu") + "\0.msh", tmp_path / "x\0y.msh"):
+        with pytest.raises(ValueError, match="embedded null byte"):
+            m.write(path)
+    assert list(tmp_path.iterdir()) == []
+    with pytest.raises(ValueError, match="embedded null byte"):
+        curvemesh.mesh(str(examples / "overlapping-shapes.svg") + "\0.poly")
+    with pytest.raises(ValueError, match="embedded null byte"):
+        curvemesh.check(str(tmp_path / "a.msh\0"))
+
+
+def test_writing_over_the_drawing_is_refused(tmp_path, examples):
+    drawing = tmp_path / "drawing.svg"
+    drawing.write_bytes((examples / "overlapping-shapes.svg").read_bytes())
+    before = drawing.read_bytes()
+    m = curvemesh.mesh(drawing, linear=True)
+    with pytest.raises(ValueError, match="refusing to write over an input"):
+        m.write(drawing)
+    assert drawing.read_bytes() == before
 
 
 # --- errors ---------------------------------------------------------------------------------------

@@ -1,0 +1,24 @@
+#pragma once
+// A drawing that would cost more than a bound of curvemesh::Limits allows. Thrown by the stage
+// that finds out (the reader, the triangulation, the optimization) before it allocates the
+// excess; the pipeline turns it into curvemesh::Error (invalid input, exit code 1).
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+
+namespace curvemesh::base {
+
+class LimitExceeded : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Throws LimitExceeded when a mesh would have `triangles` > `max_triangles`: "the mesh would have
+// more than MAX triangles (WHY; --max-triangles raises the limit)".
+inline void check_triangles(std::size_t triangles, std::size_t max_triangles, const std::string& why) {
+  if (triangles > max_triangles)
+    throw LimitExceeded("the mesh would have more than " + std::to_string(max_triangles) + " triangles (" + why +
+                        "; --max-triangles raises the limit)");
+}
+
+}  // namespace curvemesh::base
