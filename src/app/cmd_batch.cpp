@@ -158,7 +158,8 @@ Runner add_batch_command(CLI::App& app) {
       "curved_triangles, min_angle_deg, max_amips, fitted_edges, straight_primary_edges (primary edges "
       "left straight, off their curve), max_distance_rel, "
       "mean_fit_distance_rel, check_invalid, message, output (default: OUTDIR/report.jsonl, "
-      "OUTDIR/report-K-of-N.jsonl with --shard)");
+      "OUTDIR/report-K-of-N.jsonl with --shard). It must be a regular file or nothing yet: a link or "
+      "a FIFO found there is refused, not followed)");
   cmd->add_flag("--force", args->force,
                 "mesh every drawing again; without it a drawing whose mesh and statistics are newer than "
                 "the drawing, certified and made with the same mesh options, is skipped (status skipped, "

@@ -5,7 +5,8 @@ resumed run (skips, mtimes unchanged) and --force, shards that add up to the who
 output names that would collide, forwarded mesh options, the report's schema, `curvemesh report`
 and its self-contained HTML page, a batch stopped from outside (SIGTERM to it and its children, as a
 scheduler sends it; SIGTERM to one child alone; SIGKILL) and run again, a report whose last line
-was cut short, usage errors and --help.
+was cut short, hostile file systems (a link or a FIFO planted where the report goes), usage errors
+and --help.
 
 usage: batch_test.py CURVEMESH_BINARY EXAMPLES_DIR
 """
@@ -402,8 +403,10 @@ if p:
           r.stdout + r.stderr)
     # What a process killed between writing and renaming leaves, ours and another shard's.
     ours = [os.path.join(sigkill_out, n) for n in ("zz-heavy.msh.tmp.4242", "zz-heavy.json.tmp.77",
-                                                   "report.jsonl.tmp.4243")]
-    theirs = [os.path.join(sigkill_out, n) for n in ("other.msh.tmp.4242", "zz-heavy.msh.tmp.x")]
+                                                   "report.jsonl.tmp.4243", "zz-heavy.msh.tmp.k3j9x0q2m1ab",
+                                                   "report.jsonl.tmp.0a1b2c3d4e5f")]
+    theirs = [os.path.join(sigkill_out, n) for n in ("other.msh.tmp.4242", "other.msh.tmp.k3j9x0q2m1ab",
+                                                     "zz-heavy.msh.tmp.X-1", "zz-heavy.msh.tmp.")]
     for t in ours + theirs:
         write(t, "half a file")
     r, _ = run("batch", killed_in, "-o", sigkill_out, "--jobs", "1", "--timeout", "0.5")
@@ -435,6 +438,53 @@ check("a cut line before the last is an error (exit 1)", r.returncode == 1 and "
       r.stderr)
 r, _ = run("report", write(os.path.join(root, "garbage-end.jsonl"), "\n".join(good) + "\n{garbage\n"))
 check("a bad last line that ends in a newline is an error (exit 1)", r.returncode == 1, r.stderr)
+
+# --- Hostile file systems and inputs ---------------------------------------------------------------
+hostile = os.path.join(root, "hostile")
+example0 = os.path.join(examples, example_names[0])
+example1 = os.path.join(examples, example_names[1])
+
+
+def read_bytes(path):
+    try:
+        with open(path, "rb") as f:
+            return f.read()
+    except OSError:
+        return None
+
+
+def run_bounded(name, *args, timeout=30):
+    """run(), with a hang reported as a failed check instead of ending the test."""
+    try:
+        return run(*args, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        check(f"{name}: ends within {timeout} s", False, "it hung")
+        return None, timeout
+
+
+# A link planted where the report goes (OUTDIR is often shared): refused, the file it points at
+# untouched, nothing meshed.
+victim = write(os.path.join(hostile, "victim.txt"), "not a report\n")
+link_out = os.path.join(hostile, "out-link")
+os.makedirs(link_out)
+os.symlink(victim, os.path.join(link_out, "report.jsonl"))
+r, _ = run_bounded("report is a link", "batch", example0, "-o", link_out, "--linear")
+if r:
+    check("report is a link: exit 1", r.returncode == 1, f"exit {r.returncode}: {r.stderr}")
+    check("report is a link: the message names it", os.path.join(link_out, "report.jsonl") in r.stderr, r.stderr)
+check("report is a link: the file it points at is unchanged", read_bytes(victim) == b"not a report\n",
+      read_bytes(victim))
+check("report is a link: nothing meshed", not glob.glob(os.path.join(link_out, "*.msh")), os.listdir(link_out))
+
+# A FIFO planted there: without a reader an open for writing would wait forever.
+fifo_out = os.path.join(hostile, "out-fifo")
+os.makedirs(fifo_out)
+os.mkfifo(os.path.join(fifo_out, "report.jsonl"))
+r, wall = run_bounded("report is a FIFO", "batch", example0, "-o", fifo_out, "--linear")
+if r:
+    check("report is a FIFO: exit 1", r.returncode == 1, f"exit {r.returncode}: {r.stderr}")
+    check("report is a FIFO: promptly", wall < 10, wall)
+    check("report is a FIFO: the message names it", "report.jsonl" in r.stderr and "FIFO" in r.stderr, r.stderr)
 
 # --- Usage errors and help ------------------------------------------------------------------------
 usage = {"shard out of range": [inputs, "--shard", "4/3"], "shard not K/N": [inputs, "--shard", "x"],
