@@ -73,20 +73,23 @@ int run_batch(const BatchArgs& args) {
     return kUsage;
   }
   try {
-    std::vector<batch::Drawing> all = batch::expand_inputs(args.inputs);
+    batch::Inputs inputs = batch::expand_inputs(args.inputs);
     const fs::path output_dir = fs::path(args.output_dir);
-    batch::assign_outputs(all, output_dir);
-    const std::size_t total = all.size();
-    std::vector<batch::Drawing> mine = batch::shard_of(std::move(all), *shard);
+    batch::assign_outputs(inputs.drawings, output_dir);
+    const std::size_t total = inputs.drawings.size();
+    std::vector<batch::Drawing> mine = batch::shard_of(inputs.drawings, *shard);
     if (total == 0) std::cerr << "curvemesh: warning: no drawings in the inputs\n";
+    const fs::path report_path =
+        args.report.empty() ? batch::default_report_path(output_dir, *shard) : fs::path(args.report);
+    // Before anything is written: `--report a.svg` must not empty the drawing it is about to mesh.
+    if (const std::string clash = batch::output_clash(inputs, mine, report_path); !clash.empty())
+      throw batch::BatchError(kUsage, "curvemesh: " + clash);
 
     std::error_code ec;
     fs::create_directories(output_dir, ec);
     if (ec)
       throw batch::BatchError(kInvalidInput,
                               "curvemesh: " + output_dir.string() + ": cannot create (" + ec.message() + ")");
-    const fs::path report_path =
-        args.report.empty() ? batch::default_report_path(output_dir, *shard) : fs::path(args.report);
 
     const batch::BlockedSignals signals;
     batch::Batch batch_run({args.jobs, args.timeout_s, args.memory_limit_gb, args.force}, std::move(mine),
@@ -159,7 +162,7 @@ Runner add_batch_command(CLI::App& app) {
       "left straight, off their curve), max_distance_rel, "
       "mean_fit_distance_rel, check_invalid, message, output (default: OUTDIR/report.jsonl, "
       "OUTDIR/report-K-of-N.jsonl with --shard). It must be a regular file or nothing yet: a link or "
-      "a FIFO found there is refused, not followed)");
+      "a FIFO found there is refused, not followed; and no output may be an input (a usage error)");
   cmd->add_flag("--force", args->force,
                 "mesh every drawing again; without it a drawing whose mesh and statistics are newer than "
                 "the drawing, certified and made with the same mesh options, is skipped (status skipped, "

@@ -5,8 +5,8 @@ resumed run (skips, mtimes unchanged) and --force, shards that add up to the who
 output names that would collide, forwarded mesh options, the report's schema, `curvemesh report`
 and its self-contained HTML page, a batch stopped from outside (SIGTERM to it and its children, as a
 scheduler sends it; SIGTERM to one child alone; SIGKILL) and run again, a report whose last line
-was cut short, hostile file systems (a link or a FIFO planted where the report goes), usage errors
-and --help.
+was cut short, hostile file systems and inputs (a link or a FIFO planted where the report goes, an
+output that is an input), usage errors and --help.
 
 usage: batch_test.py CURVEMESH_BINARY EXAMPLES_DIR
 """
@@ -485,6 +485,36 @@ if r:
     check("report is a FIFO: exit 1", r.returncode == 1, f"exit {r.returncode}: {r.stderr}")
     check("report is a FIFO: promptly", wall < 10, wall)
     check("report is a FIFO: the message names it", "report.jsonl" in r.stderr and "FIFO" in r.stderr, r.stderr)
+
+# An output that is an input: refused (usage) before anything is written, not even OUTDIR.
+drawing = os.path.join(hostile, "clash", "a.svg")
+os.makedirs(os.path.dirname(drawing))
+shutil.copy(example0, drawing)
+original = read_bytes(drawing)
+clash_out = os.path.join(hostile, "out-clash")
+r, _ = run("batch", drawing, "-o", clash_out, "--report", drawing)
+check("--report is the drawing: exit 2", r.returncode == 2, f"exit {r.returncode}: {r.stderr}")
+check("--report is the drawing: the message says so", "refusing to write over an input" in r.stderr, r.stderr)
+check("--report is the drawing: the drawing is unchanged", read_bytes(drawing) == original)
+check("--report is the drawing: nothing written", not os.path.exists(clash_out))
+os.symlink(drawing, os.path.join(hostile, "clash", "link.jsonl"))
+r, _ = run("batch", drawing, "-o", clash_out, "--report", os.path.join(hostile, "clash", "link.jsonl"))
+check("--report is a link to the drawing: exit 2", r.returncode == 2 and read_bytes(drawing) == original,
+      f"exit {r.returncode}: {r.stderr}")
+clash_list = write(os.path.join(hostile, "clash", "list.txt"), "a.svg\n")
+r, _ = run("batch", clash_list, "-o", clash_out, "--report", clash_list)
+check("--report is the list file: exit 2, the list unchanged",
+      r.returncode == 2 and read_bytes(clash_list) == b"a.svg\n", f"exit {r.returncode}: {r.stderr}")
+# A listed drawing named a.json, meshed into its own folder: its statistics would be written over it.
+shutil.copy(example0, os.path.join(hostile, "clash", "b.json"))
+json_list = write(os.path.join(hostile, "clash", "json-list.txt"), "b.json\n")
+r, _ = run("batch", json_list, "-o", os.path.join(hostile, "clash"), "--report", os.path.join(hostile, "r.jsonl"))
+check("statistics over the drawing: exit 2, the drawing unchanged",
+      r.returncode == 2 and read_bytes(os.path.join(hostile, "clash", "b.json")) == original,
+      f"exit {r.returncode}: {r.stderr}")
+r, _ = run("batch", drawing, "-o", clash_out, "--report", os.path.join(clash_out, "a.json"))
+check("--report is a drawing's statistics: exit 2, two outputs named", r.returncode == 2
+      and "two outputs" in r.stderr and not os.path.exists(clash_out), f"exit {r.returncode}: {r.stderr}")
 
 # --- Usage errors and help ------------------------------------------------------------------------
 usage = {"shard out of range": [inputs, "--shard", "4/3"], "shard not K/N": [inputs, "--shard", "x"],
