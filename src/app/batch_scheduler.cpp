@@ -181,6 +181,8 @@ void Batch::start_mesh(std::size_t i) {
   argv.insert(argv.end(), forwarded_.begin(), forwarded_.end());
   Job job;
   job.index = i;
+  // Taken before the child reads the drawing: one changed while it was meshed is redone next time.
+  job.input = input_identity(d.path);
   job.child = start_child(argv, setup_);
   job.deadline = job.child.started + std::chrono::duration_cast<Clock::duration>(
                                          std::chrono::duration<double>(settings_.timeout_s));
@@ -254,8 +256,8 @@ void Batch::after_check(Job job, const Outcome& o) {
                   : "curvemesh check: " + message;
   }
   if (status == Status::ok) {
-    stats["batch"] =
-        batch_record(job.mesh.seconds, job.mesh.peak_mb, o.seconds, check_invalid, mesh_arguments_);
+    stats["batch"] = batch_record(job.mesh.seconds, job.mesh.peak_mb, o.seconds, check_invalid,
+                                  mesh_arguments_, job.input);
     try {
       io::write_file_atomically(d.stats.string(), stats.dump(1) + "\n");
     } catch (const io::OutputError& e) {

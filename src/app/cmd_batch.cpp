@@ -165,8 +165,9 @@ Runner add_batch_command(CLI::App& app) {
       "a FIFO found there is refused, not followed; and no output may be an input (a usage error)");
   cmd->add_flag("--force", args->force,
                 "mesh every drawing again; without it a drawing whose mesh and statistics are newer than "
-                "the drawing, certified and made with the same mesh options, is skipped (status skipped, "
-                "its figures read back from the statistics)");
+                "the drawing, certified and made with the same mesh options from the same file (path, size "
+                "and modification time), is skipped (status skipped, its figures read back from the "
+                "statistics)");
   cmd->add_option("--shard", args->shard,
                   "K/N: mesh only the drawings whose index i in the sorted list has i % N == K-1 (K from 1), "
                   "to split a corpus over N runs whose reports add up to the whole")

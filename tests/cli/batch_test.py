@@ -6,7 +6,7 @@ output names that would collide, forwarded mesh options, the report's schema, `c
 and its self-contained HTML page, a batch stopped from outside (SIGTERM to it and its children, as a
 scheduler sends it; SIGTERM to one child alone; SIGKILL) and run again, a report whose last line
 was cut short, hostile file systems and inputs (a link or a FIFO planted where the report goes, an
-output that is an input), usage errors and --help.
+output that is an input, another drawing of the same name met on resuming), usage errors and --help.
 
 usage: batch_test.py CURVEMESH_BINARY EXAMPLES_DIR
 """
@@ -515,6 +515,43 @@ check("statistics over the drawing: exit 2, the drawing unchanged",
 r, _ = run("batch", drawing, "-o", clash_out, "--report", os.path.join(clash_out, "a.json"))
 check("--report is a drawing's statistics: exit 2, two outputs named", r.returncode == 2
       and "two outputs" in r.stderr and not os.path.exists(clash_out), f"exit {r.returncode}: {r.stderr}")
+
+# Resume compares the drawing file, not its time alone: another a.svg meets the same a.msh.
+resume_out = os.path.join(hostile, "out-resume")
+first_a = os.path.join(hostile, "dir1", "a.svg")
+other_a = os.path.join(hostile, "dir2", "a.svg")
+for path, source in ((first_a, example0), (other_a, example1)):
+    os.makedirs(os.path.dirname(path))
+    shutil.copy(source, path)
+    os.utime(path, ns=(1_000_000_000_000_000_000, 1_000_000_000_000_000_000))  # older than any mesh
+r, _ = run("batch", first_a, "-o", resume_out, "--linear")
+one = read_report(os.path.join(resume_out, "report.jsonl"))
+try:
+    with open(os.path.join(resume_out, "a.json")) as f:
+        record = json.load(f).get("batch", {}).get("input", {})
+except (OSError, json.JSONDecodeError):
+    record = {}
+st = os.stat(first_a)
+check("resume: the record names the drawing file (path, size, time)",
+      record == {"path": os.path.realpath(first_a), "size": st.st_size, "mtime_ns": st.st_mtime_ns}, record)
+r, _ = run("batch", other_a, "-o", resume_out, "--linear")
+two = read_report(os.path.join(resume_out, "report.jsonl"))
+r, _ = run("batch", other_a, "-o", os.path.join(hostile, "out-resume-direct"), "--linear")
+direct = read_report(os.path.join(hostile, "out-resume-direct", "report.jsonl"))
+check("resume: another a.svg is meshed, not skipped", [l.get("status") for l in two] == ["ok"], two)
+check("resume: the mesh is the other drawing's",
+      two and direct and one and two[0].get("triangles") == direct[0].get("triangles") != one[0].get("triangles"),
+      (one, two, direct))
+# The same path, another content copied over with the old time kept (cp -p, rsync -t).
+shutil.copy(example0, other_a)
+os.utime(other_a, ns=(1_000_000_000_000_000_000, 1_000_000_000_000_000_000))
+r, _ = run("batch", other_a, "-o", resume_out, "--linear")
+three = read_report(os.path.join(resume_out, "report.jsonl"))
+check("resume: a drawing replaced with its time kept is meshed again",
+      [l.get("status") for l in three] == ["ok"] and three[0].get("triangles") == one[0].get("triangles"), three)
+r, _ = run("batch", other_a, "-o", resume_out, "--linear")
+check("resume: the same file again is skipped",
+      [l.get("status") for l in read_report(os.path.join(resume_out, "report.jsonl"))] == ["skipped"])
 
 # --- Usage errors and help ------------------------------------------------------------------------
 usage = {"shard out of range": [inputs, "--shard", "4/3"], "shard not K/N": [inputs, "--shard", "x"],
