@@ -6,7 +6,8 @@ output names that would collide, forwarded mesh options, the report's schema, `c
 and its self-contained HTML page, a batch stopped from outside (SIGTERM to it and its children, as a
 scheduler sends it; SIGTERM to one child alone; SIGKILL) and run again, a report whose last line
 was cut short, hostile file systems and inputs (a link or a FIFO planted where the report goes, an
-output that is an input, another drawing of the same name met on resuming), usage errors and --help.
+output that is an input, another drawing of the same name met on resuming, file names that look like
+options), usage errors and --help.
 
 usage: batch_test.py CURVEMESH_BINARY EXAMPLES_DIR
 """
@@ -28,9 +29,9 @@ tmp = tempfile.TemporaryDirectory()
 root = tmp.name
 
 
-def run(*args, timeout=120):
+def run(*args, timeout=120, cwd=None):
     start = time.monotonic()
-    r = subprocess.run([binary, *args], capture_output=True, text=True, timeout=timeout)
+    r = subprocess.run([binary, *args], capture_output=True, text=True, timeout=timeout, cwd=cwd)
     return r, time.monotonic() - start
 
 
@@ -453,10 +454,10 @@ def read_bytes(path):
         return None
 
 
-def run_bounded(name, *args, timeout=30):
+def run_bounded(name, *args, timeout=30, cwd=None):
     """run(), with a hang reported as a failed check instead of ending the test."""
     try:
-        return run(*args, timeout=timeout)
+        return run(*args, timeout=timeout, cwd=cwd)
     except subprocess.TimeoutExpired:
         check(f"{name}: ends within {timeout} s", False, "it hung")
         return None, timeout
@@ -552,6 +553,33 @@ check("resume: a drawing replaced with its time kept is meshed again",
 r, _ = run("batch", other_a, "-o", resume_out, "--linear")
 check("resume: the same file again is skipped",
       [l.get("status") for l in read_report(os.path.join(resume_out, "report.jsonl"))] == ["skipped"])
+
+# Names that look like options are files: a drawing called -dash.svg, and list lines that would be
+# options to a child (they are relative to the list's folder, so given as the list's own name).
+dash_dir = os.path.join(hostile, "dash")
+os.makedirs(dash_dir)
+shutil.copy(example0, os.path.join(dash_dir, "-dash.svg"))
+for k, (name, args) in enumerate((("given as ./-dash.svg", ["./-dash.svg"]), ("in the folder .", ["."]),
+                                  ("in a folder", [dash_dir]))):
+    dash_out = os.path.join(hostile, f"out-dash-{k}")
+    r, _ = run("batch", *args, "-o", dash_out, "--linear", cwd=dash_dir)
+    l = read_report(os.path.join(dash_out, "report.jsonl"))
+    check(f"-dash.svg {name}: meshed ok", r.returncode == 0 and [x.get("status") for x in l] == ["ok"],
+          f"exit {r.returncode}: {r.stderr} {l}")
+    check(f"-dash.svg {name}: its mesh written", os.path.exists(os.path.join(dash_out, "-dash.msh")))
+planted_svg, planted_msh = os.path.join(hostile, "planted.svg"), os.path.join(hostile, "planted.msh")
+options_dir = os.path.join(hostile, "options")
+write(os.path.join(options_dir, "list.txt"), f"--svg={planted_svg}\n-o{planted_msh}\n")
+options_out = os.path.join(hostile, "out-options")
+r, _ = run("batch", "list.txt", "-o", options_out, "--linear", cwd=options_dir)
+l = read_report(os.path.join(options_out, "report.jsonl"))
+check("option-like list lines: exit 1", r.returncode == 1, f"exit {r.returncode}: {r.stderr}")
+check("option-like list lines: each an invalid-input, a file that cannot be opened",
+      len(l) == 2 and all(x.get("status") == "invalid-input" and x.get("path", "?") in x.get("message", "")
+                          and any(w in x.get("message", "").lower() for w in ("no such file", "cannot open"))
+                          for x in l), l)
+check("option-like list lines: nothing written where they point",
+      not os.path.exists(planted_svg) and not os.path.exists(planted_msh))
 
 # --- Usage errors and help ------------------------------------------------------------------------
 usage = {"shard out of range": [inputs, "--shard", "4/3"], "shard not K/N": [inputs, "--shard", "x"],
