@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <system_error>
 
@@ -25,6 +26,27 @@ double rounded(double x, double per_unit) {
 }
 
 }  // namespace
+
+std::string json_text(const Json& j, int indent) {
+  const std::string raw = j.dump(indent, ' ', false, Json::error_handler_t::replace);
+  std::string text;
+  text.reserve(raw.size());
+  // Outside strings the text is plain ASCII, and 0xC2 only ever leads a two-byte sequence: these
+  // bytes are characters of some string, escaped where they stand.
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    const auto c = static_cast<unsigned char>(raw[i]);
+    const auto next = i + 1 < raw.size() ? static_cast<unsigned char>(raw[i + 1]) : 0u;
+    if (c == 0x7f || (c == 0xc2 && next >= 0x80 && next <= 0x9f)) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\u%04x", c == 0x7f ? 0x7fu : next);
+      text += escaped;
+      if (c == 0xc2) ++i;
+    } else {
+      text += raw[i];
+    }
+  }
+  return text;
+}
 
 Json report_line(const Drawing& d, Status status, double seconds, double peak_mb, const Json& stats,
                  const Json& check_invalid, const std::string& message) {

@@ -13,6 +13,12 @@ namespace curvemesh::app::batch {
 
 using Json = nlohmann::ordered_json;
 
+// `j` as text for a file (one line when `indent` is -1). Never throws on text that is not UTF-8
+// (a file name, a child's message: each bad byte becomes U+FFFD), and escapes DEL and the C1
+// controls (U+0080..U+009F) as \u007f and \u0080.. as the C0 ones are, so that showing a report
+// on a terminal (cat, tail -f) cannot drive it.
+std::string json_text(const Json& j, int indent = -1);
+
 // One report line, every key always present: figures a drawing does not have (no mesh, or no
 // curved stage with --linear) are null.
 Json report_line(const Drawing& d, Status status, double seconds, double peak_mb, const Json& stats,

@@ -262,7 +262,7 @@ void Batch::after_check(Job job, const Outcome& o) {
     stats["batch"] = batch_record(job.mesh.seconds, job.mesh.peak_mb, o.seconds, check_invalid,
                                   mesh_arguments_, job.input);
     try {
-      io::write_file_atomically(d.stats.string(), stats.dump(1) + "\n");
+      io::write_file_atomically(d.stats.string(), json_text(stats, 1) + "\n");
     } catch (const io::OutputError& e) {
       status = Status::crash;
       message = e.what();
@@ -333,7 +333,7 @@ void Batch::kill_all() {
 void Batch::finish(std::size_t i, Json line) {
   // Written as they come, each line in one write, so a run that dies, even by SIGKILL, still leaves
   // a report of whole lines; sorted at the end.
-  write_whole(report_fd_, line.dump() + "\n");
+  write_whole(report_fd_, json_text(line) + "\n");
   progress_.finished(line);
   lines_[i] = std::move(line);
 }
@@ -343,7 +343,7 @@ void Batch::write_sorted_report() {
   report_fd_ = -1;
   std::string text;
   for (const auto& line : lines_)
-    if (line) text += line->dump() + "\n";
+    if (line) text += json_text(*line) + "\n";
   try {
     io::write_file_atomically(report_path_.string(), text);
   } catch (const io::OutputError& e) {

@@ -24,6 +24,7 @@
 #include "app/batch_scheduler.hpp"
 #include "app/commands.hpp"
 #include "app/mesh_options.hpp"
+#include "base/text.hpp"
 
 namespace curvemesh::app {
 
@@ -69,7 +70,8 @@ int run_batch(const BatchArgs& args) {
   if (!parameters_valid(args.mesh.parameters)) return kUsage;
   const auto shard = batch::parse_shard(args.shard);
   if (!shard) {
-    std::cerr << "curvemesh: --shard wants K/N with 1 <= K <= N, not '" << args.shard << "'\n";
+    std::cerr << "curvemesh: --shard wants K/N with 1 <= K <= N, not '" << base::printable(args.shard)
+              << "'\n";
     return kUsage;
   }
   try {
@@ -111,7 +113,7 @@ int run_batch(const BatchArgs& args) {
     }
     return progress.failed() ? kInvalidInput : kOk;
   } catch (const batch::BatchError& e) {
-    std::cerr << e.what() << "\n";
+    std::cerr << base::printable(e.what()) << "\n";  // it may name a file: shown, never obeyed
     return e.code();
   }
 }

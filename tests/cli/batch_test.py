@@ -7,7 +7,7 @@ and its self-contained HTML page, a batch stopped from outside (SIGTERM to it an
 scheduler sends it; SIGTERM to one child alone; SIGKILL) and run again, a report whose last line
 was cut short, hostile file systems and inputs (a link or a FIFO planted where the report goes, an
 output that is an input, another drawing of the same name met on resuming, file names that look like
-options), usage errors and --help.
+options, control characters and bytes that are not UTF-8 in file names), usage errors and --help.
 
 usage: batch_test.py CURVEMESH_BINARY EXAMPLES_DIR
 """
@@ -580,6 +580,47 @@ check("option-like list lines: each an invalid-input, a file that cannot be open
                           for x in l), l)
 check("option-like list lines: nothing written where they point",
       not os.path.exists(planted_svg) and not os.path.exists(planted_msh))
+
+# Control characters in file names: the report stays JSON Lines that no terminal obeys, and so does
+# batch's own output. ESC (a colour, a title), DEL, C1 characters (NEL; CSI is a C1 ESC [) and, in
+# the malformed drawing's name (its message repeats it), a byte that is not UTF-8.
+ctl_dir = os.path.join(hostile, "ctl").encode()
+os.makedirs(ctl_dir)
+good_name = b"ctl-\x1b[31m-\x7f-\xc2\x85.svg"
+bad_name = b"bad-\x1b]0;title\x07-\xc2\x9b2J-\xfe.svg"
+shutil.copy(example0, os.path.join(ctl_dir, good_name))
+with open(os.path.join(ctl_dir, bad_name), "w") as f:
+    f.write(SVG.format('<path d="M 10 10 L 20 x"/>'))
+ctl_out = os.path.join(hostile, "out-ctl")
+ctl_report = os.path.join(ctl_out, "report.jsonl")
+for attempt in ("first run", "second run"):
+    r = subprocess.run([binary, "batch", ctl_dir, "-o", ctl_out, "--linear"], capture_output=True, timeout=120)
+    check(f"control characters, {attempt}: exit 1 (the malformed drawing)", r.returncode == 1,
+          f"exit {r.returncode}: {r.stderr!r}")
+    raw = read_bytes(ctl_report) or b""
+    lines = raw.split(b"\n")
+    check(f"control characters, {attempt}: two lines", len(lines) == 3 and lines[2] == b"", raw)
+    parsed = []
+    for line in lines[:2]:
+        check(f"control characters, {attempt}: no raw control byte in a line",
+              not any(b < 0x20 or b == 0x7f for b in line) and not any(
+                  line[i] == 0xc2 and 0x80 <= line[i + 1] <= 0x9f for i in range(len(line) - 1)), line)
+        try:
+            parsed.append(json.loads(line.decode("utf-8", errors="strict")))
+        except (UnicodeDecodeError, json.JSONDecodeError) as e:
+            check(f"control characters, {attempt}: a line is UTF-8 JSON", False, f"{e}: {line!r}")
+    statuses = {p.get("path", "").split("/")[-1][:3]: p.get("status") for p in parsed}
+    check(f"control characters, {attempt}: statuses",
+          statuses == {"bad": "invalid-input", "ctl": "ok" if attempt == "first run" else "skipped"}, parsed)
+    check(f"control characters, {attempt}: the characters kept, escaped, the bad byte replaced",
+          any(p.get("path", "").endswith("ctl-\x1b[31m-\x7f-\x85.svg") for p in parsed)
+          and any(p.get("path", "").endswith("bad-\x1b]0;title\x07-\x9b2J-\ufffd.svg")
+                  and "title\x07-\x9b2J-\ufffd.svg" in p.get("message", "") for p in parsed), parsed)
+    check(f"control characters, {attempt}: batch prints no raw ESC, BEL or C1 on stderr",
+          b"\x1b" not in r.stderr and b"\x07" not in r.stderr and b"\xc2\x9b" not in r.stderr
+          and b"\xc2\x85" not in r.stderr, r.stderr)
+r, _ = run("report", ctl_report)
+check("control characters: curvemesh report reads the report", r.returncode == 0, r.stderr)
 
 # --- Usage errors and help ------------------------------------------------------------------------
 usage = {"shard out of range": [inputs, "--shard", "4/3"], "shard not K/N": [inputs, "--shard", "x"],
