@@ -90,6 +90,10 @@ std::string signal_name(int sig) {
 
 }  // namespace
 
+std::string path_argument(const std::string& path) {
+  return path.starts_with('-') ? "./" + path : path;
+}
+
 Child start_child(const std::vector<std::string>& args, const ChildSetup& setup) {
   Child c;
   c.started = Clock::now();

@@ -42,6 +42,11 @@ struct Outcome {
   std::string out, err;
 };
 
+// `path` as a child's argument: a relative path that starts with '-' gets "./" before it. Paths
+// come from folders and list files, and a file named "-o/x" or "--svg=y" must stay a file; the
+// children also take their paths after "--", and this keeps that true of any parser.
+std::string path_argument(const std::string& path);
+
 // Runs this very executable with `args` (args[0] is the name it sees). Throws BatchError when no
 // temporary file can be made for its output; a failed fork or exec is in the child's start_errno.
 Child start_child(const std::vector<std::string>& args, const ChildSetup& setup);

@@ -18,12 +18,22 @@ struct Drawing {
   fs::path msh, stats;
 };
 
+struct Inputs {
+  std::vector<Drawing> drawings;
+  std::vector<std::string> lists;  // the list files read, as given
+};
+
 // Every drawing the inputs name, sorted by path, each file once. Throws BatchError when an input
 // does not exist or a folder or list cannot be read.
-std::vector<Drawing> expand_inputs(const std::vector<std::string>& inputs);
+Inputs expand_inputs(const std::vector<std::string>& inputs);
 
 // Sets each drawing's `msh` and `stats` under `output_dir`.
 void assign_outputs(std::vector<Drawing>& drawings, const fs::path& output_dir);
+
+// The first output of this run (`report`, and the meshes and statistics of `mine`) that is the
+// same file as an input (any drawing, any list) or as another output, said as a message; empty
+// when there is none.
+std::string output_clash(const Inputs& inputs, const std::vector<Drawing>& mine, const fs::path& report);
 
 // `--shard K/N`: run K of N, K from 1.
 struct Shard {

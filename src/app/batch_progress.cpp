@@ -6,6 +6,8 @@
 #include <iostream>
 #include <sstream>
 
+#include "base/text.hpp"
+
 namespace curvemesh::app::batch {
 
 std::string clock_text(double s) {
@@ -25,6 +27,8 @@ Progress::Progress(std::size_t total, bool terminal)
 
 void Progress::finished(const Json& line) {
   const std::string status = line["status"];
+  // Paths and messages come from file names and children's output: shown, never obeyed.
+  const std::string path = base::printable(line["path"].get<std::string>());
   ++done_;
   ++counts_[status];
   if (succeeded(status))
@@ -36,14 +40,14 @@ void Progress::finished(const Json& line) {
     char head[96];
     std::snprintf(head, sizeof head, "[%zu/%zu] %-14s %8.2f s %7.0f MB  ", done_, total_, status.c_str(),
                   line["seconds"].get<double>(), line["peak_mb"].get<double>());
-    const std::string message = line["message"];
-    std::cerr << head << line["path"].get<std::string>() << (message.empty() ? "" : "  " + message) << "\n";
+    const std::string message = base::printable(line["message"].get<std::string>());
+    std::cerr << head << path << (message.empty() ? "" : "  " + message) << "\n";
     return;
   }
   // On a terminal the failures stay readable above the progress line.
   if (!succeeded(status))
-    std::cerr << "\r\33[K" << status << ": " << line["path"].get<std::string>() << "  "
-              << line["message"].get<std::string>() << "\n";
+    std::cerr << "\r\33[K" << status << ": " << path << "  "
+              << base::printable(line["message"].get<std::string>()) << "\n";
   draw();
 }
 
@@ -85,7 +89,7 @@ std::string Progress::summary(const std::string& shard, std::size_t all, const s
       sep = ", ";
     }
   if (sep == ", ") summary << ")";
-  summary << "; " << clock_text(elapsed()) << "; report " << report;
+  summary << "; " << clock_text(elapsed()) << "; report " << base::printable(report);
   return summary.str();
 }
 

@@ -3,6 +3,7 @@
 #include "app/batch_scheduler.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -18,6 +19,7 @@
 
 #include "app/batch_error.hpp"
 #include "app/commands.hpp"
+#include "base/files.hpp"
 #include "io/output_file.hpp"
 
 namespace curvemesh::app::batch {
@@ -43,14 +45,43 @@ void write_whole(int fd, const std::string& text) {
   }
 }
 
-// What `io::write_file_atomically` leaves when killed between writing and renaming: NAME.tmp.PID.
-// Returns NAME, or nothing for other files.
-std::optional<std::string> temporary_of(const std::string& file) {
-  const auto at = file.rfind(".tmp.");
-  if (at == std::string::npos || at == 0 || at + 5 == file.size() ||
-      file.find_first_not_of("0123456789", at + 5) != std::string::npos)
-    return std::nullopt;
-  return file.substr(0, at);
+std::string not_regular(mode_t mode) {
+  if (S_ISLNK(mode)) return "it is a symbolic link, not followed";
+  if (S_ISFIFO(mode)) return "it is a FIFO, not a regular file";
+  if (S_ISDIR(mode)) return "it is a folder";
+  return "it is not a regular file";
+}
+
+// The report as lines come, opened without following a link planted at its name and without
+// waiting on a FIFO planted there (O_NONBLOCK), and truncated only once it is known to be a regular
+// file: a report is never written through to another file, and never holds a run up.
+int open_report(const fs::path& path) {
+  const auto refuse = [&](const std::string& why) {
+    return BatchError(kInvalidInput,
+                      "curvemesh: " + path.string() + ": cannot write the report (" + why + ")");
+  };
+  const int fd =
+      ::open(path.c_str(), O_WRONLY | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY | O_CLOEXEC, 0666);
+  if (fd < 0) {
+    const int error = errno;
+    struct stat st {};
+    // ELOOP and ENXIO say little: name what is there instead.
+    if (::lstat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) throw refuse(not_regular(st.st_mode));
+    throw refuse(std::strerror(error));
+  }
+  struct stat st {};
+  std::string why;
+  if (::fstat(fd, &st) != 0)
+    why = std::strerror(errno);
+  else if (!S_ISREG(st.st_mode))
+    why = not_regular(st.st_mode);
+  else if (::ftruncate(fd, 0) != 0)
+    why = std::strerror(errno);
+  if (!why.empty()) {
+    ::close(fd);
+    throw refuse(why);
+  }
+  return fd;
 }
 
 }  // namespace
@@ -77,10 +108,7 @@ int Batch::run(const fs::path& report_path) {
   report_path_ = report_path;
   std::error_code ec;
   if (report_path.has_parent_path()) fs::create_directories(report_path.parent_path(), ec);
-  report_fd_ = ::open(report_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (report_fd_ < 0)
-    throw BatchError(kInvalidInput, "curvemesh: " + report_path.string() + ": cannot write the report (" +
-                                        std::strerror(errno) + ")");
+  report_fd_ = open_report(report_path);
   remove_stale_temporaries();
 
   std::vector<std::size_t> pending;
@@ -111,9 +139,10 @@ int Batch::run(const fs::path& report_path) {
 }
 
 // A process killed between writing a file and renaming it into place (by the time limit, by a
-// scheduler, by its node going down) leaves NAME.tmp.PID beside it. Nothing reads those, but a
-// half-written mesh can be large, so the ones of this run's drawings and of its report go before it
-// starts. Other files are left alone: shards sharing OUTDIR remove their own.
+// scheduler, by its node going down) leaves a temporary beside it (base::is_temporary_of: the
+// NAME.tmp.PID of earlier versions too). Nothing reads those, but a half-written mesh can be large,
+// so the ones of this run's drawings and of its report go before it starts. Other files are left
+// alone: shards sharing OUTDIR remove their own.
 void Batch::remove_stale_temporaries() const {
   std::map<fs::path, std::set<std::string>> ours;  // folder -> the names whose temporaries are ours
   for (const Drawing& d : drawings_)
@@ -123,9 +152,14 @@ void Batch::remove_stale_temporaries() const {
     std::error_code ec;
     for (fs::directory_iterator it(folder.empty() ? fs::path(".") : folder, ec), end; !ec && it != end;
          it.increment(ec)) {
-      const auto name = temporary_of(it->path().filename().string());
+      // The name before the last ".tmp." is the only one the file can be a temporary of (the
+      // random part has no dot): one look-up per file, however many drawings share the folder.
+      const std::string file = it->path().filename().string();
+      const auto at = file.rfind(".tmp.");
+      if (at == std::string::npos) continue;
+      const auto name = names.find(file.substr(0, at));
       std::error_code ignored;
-      if (name && names.count(*name)) fs::remove(it->path(), ignored);
+      if (name != names.end() && base::is_temporary_of(file, *name)) fs::remove(it->path(), ignored);
     }
   }
 }
@@ -142,11 +176,16 @@ void Batch::start_mesh(std::size_t i) {
                           "cannot create " + d.msh.parent_path().string() + ": " + ec.message()));
     return;
   }
-  std::vector<std::string> argv = {"curvemesh",    "mesh",    d.path,           "-o",
-                                   d.msh.string(), "--stats", d.stats.string(), "-q"};
+  // The drawing last, after "--": whatever its name, it is read as the input, never as an option.
+  std::vector<std::string> argv = {
+      "curvemesh", "mesh", "-o", path_argument(d.msh.string()), "--stats", path_argument(d.stats.string()),
+      "-q"};
   argv.insert(argv.end(), forwarded_.begin(), forwarded_.end());
+  argv.insert(argv.end(), {"--", path_argument(d.path)});
   Job job;
   job.index = i;
+  // Taken before the child reads the drawing: one changed while it was meshed is redone next time.
+  job.input = input_identity(d.path);
   job.child = start_child(argv, setup_);
   job.deadline = job.child.started + std::chrono::duration_cast<Clock::duration>(
                                          std::chrono::duration<double>(settings_.timeout_s));
@@ -195,7 +234,7 @@ void Batch::after_mesh(Job job, const Outcome& o) {
   // checker, and the time limit covers both steps.
   job.mesh = o;
   job.checking = true;
-  job.child = start_child({"curvemesh", "check", d.msh.string(), "--json"}, setup_);
+  job.child = start_child({"curvemesh", "check", "--json", "--", path_argument(d.msh.string())}, setup_);
   if (job.child.pid < 0) {
     after_check(std::move(job), outcome_of(job.child, 0, 0));
     return;
@@ -220,10 +259,10 @@ void Batch::after_check(Job job, const Outcome& o) {
                   : "curvemesh check: " + message;
   }
   if (status == Status::ok) {
-    stats["batch"] =
-        batch_record(job.mesh.seconds, job.mesh.peak_mb, o.seconds, check_invalid, mesh_arguments_);
+    stats["batch"] = batch_record(job.mesh.seconds, job.mesh.peak_mb, o.seconds, check_invalid,
+                                  mesh_arguments_, job.input);
     try {
-      io::write_file_atomically(d.stats.string(), stats.dump(1) + "\n");
+      io::write_file_atomically(d.stats.string(), json_text(stats, 1) + "\n");
     } catch (const io::OutputError& e) {
       status = Status::crash;
       message = e.what();
@@ -294,7 +333,7 @@ void Batch::kill_all() {
 void Batch::finish(std::size_t i, Json line) {
   // Written as they come, each line in one write, so a run that dies, even by SIGKILL, still leaves
   // a report of whole lines; sorted at the end.
-  write_whole(report_fd_, line.dump() + "\n");
+  write_whole(report_fd_, json_text(line) + "\n");
   progress_.finished(line);
   lines_[i] = std::move(line);
 }
@@ -304,7 +343,7 @@ void Batch::write_sorted_report() {
   report_fd_ = -1;
   std::string text;
   for (const auto& line : lines_)
-    if (line) text += line->dump() + "\n";
+    if (line) text += json_text(*line) + "\n";
   try {
     io::write_file_atomically(report_path_.string(), text);
   } catch (const io::OutputError& e) {

@@ -66,6 +66,7 @@ class Batch {
     Clock::time_point deadline;
     Child child;
     Outcome mesh;  // the mesh child's outcome, once checking
+    Json input;    // the drawing file as meshing started (input_identity)
   };
 
   void remove_stale_temporaries() const;

@@ -24,6 +24,7 @@
 #include "app/batch_scheduler.hpp"
 #include "app/commands.hpp"
 #include "app/mesh_options.hpp"
+#include "base/text.hpp"
 
 namespace curvemesh::app {
 
@@ -69,24 +70,28 @@ int run_batch(const BatchArgs& args) {
   if (!parameters_valid(args.mesh.parameters)) return kUsage;
   const auto shard = batch::parse_shard(args.shard);
   if (!shard) {
-    std::cerr << "curvemesh: --shard wants K/N with 1 <= K <= N, not '" << args.shard << "'\n";
+    std::cerr << "curvemesh: --shard wants K/N with 1 <= K <= N, not '" << base::printable(args.shard)
+              << "'\n";
     return kUsage;
   }
   try {
-    std::vector<batch::Drawing> all = batch::expand_inputs(args.inputs);
+    batch::Inputs inputs = batch::expand_inputs(args.inputs);
     const fs::path output_dir = fs::path(args.output_dir);
-    batch::assign_outputs(all, output_dir);
-    const std::size_t total = all.size();
-    std::vector<batch::Drawing> mine = batch::shard_of(std::move(all), *shard);
+    batch::assign_outputs(inputs.drawings, output_dir);
+    const std::size_t total = inputs.drawings.size();
+    std::vector<batch::Drawing> mine = batch::shard_of(inputs.drawings, *shard);
     if (total == 0) std::cerr << "curvemesh: warning: no drawings in the inputs\n";
+    const fs::path report_path =
+        args.report.empty() ? batch::default_report_path(output_dir, *shard) : fs::path(args.report);
+    // Before anything is written: `--report a.svg` must not empty the drawing it is about to mesh.
+    if (const std::string clash = batch::output_clash(inputs, mine, report_path); !clash.empty())
+      throw batch::BatchError(kUsage, "curvemesh: " + clash);
 
     std::error_code ec;
     fs::create_directories(output_dir, ec);
     if (ec)
       throw batch::BatchError(kInvalidInput,
                               "curvemesh: " + output_dir.string() + ": cannot create (" + ec.message() + ")");
-    const fs::path report_path =
-        args.report.empty() ? batch::default_report_path(output_dir, *shard) : fs::path(args.report);
 
     const batch::BlockedSignals signals;
     batch::Batch batch_run({args.jobs, args.timeout_s, args.memory_limit_gb, args.force}, std::move(mine),
@@ -108,7 +113,7 @@ int run_batch(const BatchArgs& args) {
     }
     return progress.failed() ? kInvalidInput : kOk;
   } catch (const batch::BatchError& e) {
-    std::cerr << e.what() << "\n";
+    std::cerr << base::printable(e.what()) << "\n";  // it may name a file: shown, never obeyed
     return e.code();
   }
 }
@@ -158,11 +163,13 @@ Runner add_batch_command(CLI::App& app) {
       "curved_triangles, min_angle_deg, max_amips, fitted_edges, straight_primary_edges (primary edges "
       "left straight, off their curve), max_distance_rel, "
       "mean_fit_distance_rel, check_invalid, message, output (default: OUTDIR/report.jsonl, "
-      "OUTDIR/report-K-of-N.jsonl with --shard)");
+      "OUTDIR/report-K-of-N.jsonl with --shard). It must be a regular file or nothing yet: a link or "
+      "a FIFO found there is refused, not followed; and no output may be an input (a usage error)");
   cmd->add_flag("--force", args->force,
                 "mesh every drawing again; without it a drawing whose mesh and statistics are newer than "
-                "the drawing, certified and made with the same mesh options, is skipped (status skipped, "
-                "its figures read back from the statistics)");
+                "the drawing, certified and made with the same mesh options from the same file (path, size "
+                "and modification time), is skipped (status skipped, its figures read back from the "
+                "statistics)");
   cmd->add_option("--shard", args->shard,
                   "K/N: mesh only the drawings whose index i in the sorted list has i % N == K-1 (K from 1), "
                   "to split a corpus over N runs whose reports add up to the whole")

@@ -5,7 +5,9 @@ resumed run (skips, mtimes unchanged) and --force, shards that add up to the who
 output names that would collide, forwarded mesh options, the report's schema, `curvemesh report`
 and its self-contained HTML page, a batch stopped from outside (SIGTERM to it and its children, as a
 scheduler sends it; SIGTERM to one child alone; SIGKILL) and run again, a report whose last line
-was cut short, usage errors and --help.
+was cut short, hostile file systems and inputs (a link or a FIFO planted where the report goes, an
+output that is an input, another drawing of the same name met on resuming, file names that look like
+options, control characters and bytes that are not UTF-8 in file names), usage errors and --help.
 
 usage: batch_test.py CURVEMESH_BINARY EXAMPLES_DIR
 """
@@ -27,9 +29,9 @@ tmp = tempfile.TemporaryDirectory()
 root = tmp.name
 
 
-def run(*args, timeout=120):
+def run(*args, timeout=120, cwd=None):
     start = time.monotonic()
-    r = subprocess.run([binary, *args], capture_output=True, text=True, timeout=timeout)
+    r = subprocess.run([binary, *args], capture_output=True, text=True, timeout=timeout, cwd=cwd)
     return r, time.monotonic() - start
 
 
@@ -402,8 +404,10 @@ if p:
           r.stdout + r.stderr)
     # What a process killed between writing and renaming leaves, ours and another shard's.
     ours = [os.path.join(sigkill_out, n) for n in ("zz-heavy.msh.tmp.4242", "zz-heavy.json.tmp.77",
-                                                   "report.jsonl.tmp.4243")]
-    theirs = [os.path.join(sigkill_out, n) for n in ("other.msh.tmp.4242", "zz-heavy.msh.tmp.x")]
+                                                   "report.jsonl.tmp.4243", "zz-heavy.msh.tmp.k3j9x0q2m1ab",
+                                                   "report.jsonl.tmp.0a1b2c3d4e5f")]
+    theirs = [os.path.join(sigkill_out, n) for n in ("other.msh.tmp.4242", "other.msh.tmp.k3j9x0q2m1ab",
+                                                     "zz-heavy.msh.tmp.X-1", "zz-heavy.msh.tmp.")]
     for t in ours + theirs:
         write(t, "half a file")
     r, _ = run("batch", killed_in, "-o", sigkill_out, "--jobs", "1", "--timeout", "0.5")
@@ -435,6 +439,188 @@ check("a cut line before the last is an error (exit 1)", r.returncode == 1 and "
       r.stderr)
 r, _ = run("report", write(os.path.join(root, "garbage-end.jsonl"), "\n".join(good) + "\n{garbage\n"))
 check("a bad last line that ends in a newline is an error (exit 1)", r.returncode == 1, r.stderr)
+
+# --- Hostile file systems and inputs ---------------------------------------------------------------
+hostile = os.path.join(root, "hostile")
+example0 = os.path.join(examples, example_names[0])
+example1 = os.path.join(examples, example_names[1])
+
+
+def read_bytes(path):
+    try:
+        with open(path, "rb") as f:
+            return f.read()
+    except OSError:
+        return None
+
+
+def run_bounded(name, *args, timeout=30, cwd=None):
+    """run(), with a hang reported as a failed check instead of ending the test."""
+    try:
+        return run(*args, timeout=timeout, cwd=cwd)
+    except subprocess.TimeoutExpired:
+        check(f"{name}: ends within {timeout} s", False, "it hung")
+        return None, timeout
+
+
+# A link planted where the report goes (OUTDIR is often shared): refused, the file it points at
+# untouched, nothing meshed.
+victim = write(os.path.join(hostile, "victim.txt"), "not a report\n")
+link_out = os.path.join(hostile, "out-link")
+os.makedirs(link_out)
+os.symlink(victim, os.path.join(link_out, "report.jsonl"))
+r, _ = run_bounded("report is a link", "batch", example0, "-o", link_out, "--linear")
+if r:
+    check("report is a link: exit 1", r.returncode == 1, f"exit {r.returncode}: {r.stderr}")
+    check("report is a link: the message names it", os.path.join(link_out, "report.jsonl") in r.stderr, r.stderr)
+check("report is a link: the file it points at is unchanged", read_bytes(victim) == b"not a report\n",
+      read_bytes(victim))
+check("report is a link: nothing meshed", not glob.glob(os.path.join(link_out, "*.msh")), os.listdir(link_out))
+
+# A FIFO planted there: without a reader an open for writing would wait forever.
+fifo_out = os.path.join(hostile, "out-fifo")
+os.makedirs(fifo_out)
+os.mkfifo(os.path.join(fifo_out, "report.jsonl"))
+r, wall = run_bounded("report is a FIFO", "batch", example0, "-o", fifo_out, "--linear")
+if r:
+    check("report is a FIFO: exit 1", r.returncode == 1, f"exit {r.returncode}: {r.stderr}")
+    check("report is a FIFO: promptly", wall < 10, wall)
+    check("report is a FIFO: the message names it", "report.jsonl" in r.stderr and "FIFO" in r.stderr, r.stderr)
+
+# An output that is an input: refused (usage) before anything is written, not even OUTDIR.
+drawing = os.path.join(hostile, "clash", "a.svg")
+os.makedirs(os.path.dirname(drawing))
+shutil.copy(example0, drawing)
+original = read_bytes(drawing)
+clash_out = os.path.join(hostile, "out-clash")
+r, _ = run("batch", drawing, "-o", clash_out, "--report", drawing)
+check("--report is the drawing: exit 2", r.returncode == 2, f"exit {r.returncode}: {r.stderr}")
+check("--report is the drawing: the message says so", "refusing to write over an input" in r.stderr, r.stderr)
+check("--report is the drawing: the drawing is unchanged", read_bytes(drawing) == original)
+check("--report is the drawing: nothing written", not os.path.exists(clash_out))
+os.symlink(drawing, os.path.join(hostile, "clash", "link.jsonl"))
+r, _ = run("batch", drawing, "-o", clash_out, "--report", os.path.join(hostile, "clash", "link.jsonl"))
+check("--report is a link to the drawing: exit 2", r.returncode == 2 and read_bytes(drawing) == original,
+      f"exit {r.returncode}: {r.stderr}")
+clash_list = write(os.path.join(hostile, "clash", "list.txt"), "a.svg\n")
+r, _ = run("batch", clash_list, "-o", clash_out, "--report", clash_list)
+check("--report is the list file: exit 2, the list unchanged",
+      r.returncode == 2 and read_bytes(clash_list) == b"a.svg\n", f"exit {r.returncode}: {r.stderr}")
+# A listed drawing named a.json, meshed into its own folder: its statistics would be written over it.
+shutil.copy(example0, os.path.join(hostile, "clash", "b.json"))
+json_list = write(os.path.join(hostile, "clash", "json-list.txt"), "b.json\n")
+r, _ = run("batch", json_list, "-o", os.path.join(hostile, "clash"), "--report", os.path.join(hostile, "r.jsonl"))
+check("statistics over the drawing: exit 2, the drawing unchanged",
+      r.returncode == 2 and read_bytes(os.path.join(hostile, "clash", "b.json")) == original,
+      f"exit {r.returncode}: {r.stderr}")
+r, _ = run("batch", drawing, "-o", clash_out, "--report", os.path.join(clash_out, "a.json"))
+check("--report is a drawing's statistics: exit 2, two outputs named", r.returncode == 2
+      and "two outputs" in r.stderr and not os.path.exists(clash_out), f"exit {r.returncode}: {r.stderr}")
+
+# Resume compares the drawing file, not its time alone: another a.svg meets the same a.msh.
+resume_out = os.path.join(hostile, "out-resume")
+first_a = os.path.join(hostile, "dir1", "a.svg")
+other_a = os.path.join(hostile, "dir2", "a.svg")
+for path, source in ((first_a, example0), (other_a, example1)):
+    os.makedirs(os.path.dirname(path))
+    shutil.copy(source, path)
+    os.utime(path, ns=(1_000_000_000_000_000_000, 1_000_000_000_000_000_000))  # older than any mesh
+r, _ = run("batch", first_a, "-o", resume_out, "--linear")
+one = read_report(os.path.join(resume_out, "report.jsonl"))
+try:
+    with open(os.path.join(resume_out, "a.json")) as f:
+        record = json.load(f).get("batch", {}).get("input", {})
+except (OSError, json.JSONDecodeError):
+    record = {}
+st = os.stat(first_a)
+check("resume: the record names the drawing file (path, size, time)",
+      record == {"path": os.path.realpath(first_a), "size": st.st_size, "mtime_ns": st.st_mtime_ns}, record)
+r, _ = run("batch", other_a, "-o", resume_out, "--linear")
+two = read_report(os.path.join(resume_out, "report.jsonl"))
+r, _ = run("batch", other_a, "-o", os.path.join(hostile, "out-resume-direct"), "--linear")
+direct = read_report(os.path.join(hostile, "out-resume-direct", "report.jsonl"))
+check("resume: another a.svg is meshed, not skipped", [l.get("status") for l in two] == ["ok"], two)
+check("resume: the mesh is the other drawing's",
+      two and direct and one and two[0].get("triangles") == direct[0].get("triangles") != one[0].get("triangles"),
+      (one, two, direct))
+# The same path, another content copied over with the old time kept (cp -p, rsync -t).
+shutil.copy(example0, other_a)
+os.utime(other_a, ns=(1_000_000_000_000_000_000, 1_000_000_000_000_000_000))
+r, _ = run("batch", other_a, "-o", resume_out, "--linear")
+three = read_report(os.path.join(resume_out, "report.jsonl"))
+check("resume: a drawing replaced with its time kept is meshed again",
+      [l.get("status") for l in three] == ["ok"] and three[0].get("triangles") == one[0].get("triangles"), three)
+r, _ = run("batch", other_a, "-o", resume_out, "--linear")
+check("resume: the same file again is skipped",
+      [l.get("status") for l in read_report(os.path.join(resume_out, "report.jsonl"))] == ["skipped"])
+
+# Names that look like options are files: a drawing called -dash.svg, and list lines that would be
+# options to a child (they are relative to the list's folder, so given as the list's own name).
+dash_dir = os.path.join(hostile, "dash")
+os.makedirs(dash_dir)
+shutil.copy(example0, os.path.join(dash_dir, "-dash.svg"))
+for k, (name, args) in enumerate((("given as ./-dash.svg", ["./-dash.svg"]), ("in the folder .", ["."]),
+                                  ("in a folder", [dash_dir]))):
+    dash_out = os.path.join(hostile, f"out-dash-{k}")
+    r, _ = run("batch", *args, "-o", dash_out, "--linear", cwd=dash_dir)
+    l = read_report(os.path.join(dash_out, "report.jsonl"))
+    check(f"-dash.svg {name}: meshed ok", r.returncode == 0 and [x.get("status") for x in l] == ["ok"],
+          f"exit {r.returncode}: {r.stderr} {l}")
+    check(f"-dash.svg {name}: its mesh written", os.path.exists(os.path.join(dash_out, "-dash.msh")))
+planted_svg, planted_msh = os.path.join(hostile, "planted.svg"), os.path.join(hostile, "planted.msh")
+options_dir = os.path.join(hostile, "options")
+write(os.path.join(options_dir, "list.txt"), f"--svg={planted_svg}\n-o{planted_msh}\n")
+options_out = os.path.join(hostile, "out-options")
+r, _ = run("batch", "list.txt", "-o", options_out, "--linear", cwd=options_dir)
+l = read_report(os.path.join(options_out, "report.jsonl"))
+check("option-like list lines: exit 1", r.returncode == 1, f"exit {r.returncode}: {r.stderr}")
+check("option-like list lines: each an invalid-input, a file that cannot be opened",
+      len(l) == 2 and all(x.get("status") == "invalid-input" and x.get("path", "?") in x.get("message", "")
+                          and any(w in x.get("message", "").lower() for w in ("no such file", "cannot open"))
+                          for x in l), l)
+check("option-like list lines: nothing written where they point",
+      not os.path.exists(planted_svg) and not os.path.exists(planted_msh))
+
+# Control characters in file names: the report stays JSON Lines that no terminal obeys, and so does
+# batch's own output. ESC (a colour, a title), DEL, C1 characters (NEL; CSI is a C1 ESC [) and, in
+# the malformed drawing's name (its message repeats it), a byte that is not UTF-8.
+ctl_dir = os.path.join(hostile, "ctl").encode()
+os.makedirs(ctl_dir)
+good_name = b"ctl-\x1b[31m-\x7f-\xc2\x85.svg"
+bad_name = b"bad-\x1b]0;title\x07-\xc2\x9b2J-\xfe.svg"
+shutil.copy(example0, os.path.join(ctl_dir, good_name))
+with open(os.path.join(ctl_dir, bad_name), "w") as f:
+    f.write(SVG.format('<path d="M 10 10 L 20 x"/>'))
+ctl_out = os.path.join(hostile, "out-ctl")
+ctl_report = os.path.join(ctl_out, "report.jsonl")
+for attempt in ("first run", "second run"):
+    r = subprocess.run([binary, "batch", ctl_dir, "-o", ctl_out, "--linear"], capture_output=True, timeout=120)
+    check(f"control characters, {attempt}: exit 1 (the malformed drawing)", r.returncode == 1,
+          f"exit {r.returncode}: {r.stderr!r}")
+    raw = read_bytes(ctl_report) or b""
+    lines = raw.split(b"\n")
+    check(f"control characters, {attempt}: two lines", len(lines) == 3 and lines[2] == b"", raw)
+    parsed = []
+    for line in lines[:2]:
+        check(f"control characters, {attempt}: no raw control byte in a line",
+              not any(b < 0x20 or b == 0x7f for b in line) and not any(
+                  line[i] == 0xc2 and 0x80 <= line[i + 1] <= 0x9f for i in range(len(line) - 1)), line)
+        try:
+            parsed.append(json.loads(line.decode("utf-8", errors="strict")))
+        except (UnicodeDecodeError, json.JSONDecodeError) as e:
+            check(f"control characters, {attempt}: a line is UTF-8 JSON", False, f"{e}: {line!r}")
+    statuses = {p.get("path", "").split("/")[-1][:3]: p.get("status") for p in parsed}
+    check(f"control characters, {attempt}: statuses",
+          statuses == {"bad": "invalid-input", "ctl": "ok" if attempt == "first run" else "skipped"}, parsed)
+    check(f"control characters, {attempt}: the characters kept, escaped, the bad byte replaced",
+          any(p.get("path", "").endswith("ctl-\x1b[31m-\x7f-\x85.svg") for p in parsed)
+          and any(p.get("path", "").endswith("bad-\x1b]0;title\x07-\x9b2J-\ufffd.svg")
+                  and "title\x07-\x9b2J-\ufffd.svg" in p.get("message", "") for p in parsed), parsed)
+    check(f"control characters, {attempt}: batch prints no raw ESC, BEL or C1 on stderr",
+          b"\x1b" not in r.stderr and b"\x07" not in r.stderr and b"\xc2\x9b" not in r.stderr
+          and b"\xc2\x85" not in r.stderr, r.stderr)
+r, _ = run("report", ctl_report)
+check("control characters: curvemesh report reads the report", r.returncode == 0, r.stderr)
 
 # --- Usage errors and help ------------------------------------------------------------------------
 usage = {"shard out of range": [inputs, "--shard", "4/3"], "shard not K/N": [inputs, "--shard", "x"],
