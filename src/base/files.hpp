@@ -63,8 +63,9 @@ class OutputFiles {
 // One output, all or nothing (an OutputFiles of one).
 void write_file_atomically(const std::string& path, std::string_view content);
 
-// The name of what `io::OutputFiles` leaves beside NAME when its process is killed between
-// writing and renaming (NAME.tmp. and 12 characters of [0-9a-z]); nothing for other files.
+// Whether `file` is what OutputFiles leaves beside NAME when its process is killed between
+// writing and renaming: NAME.tmp. and a suffix of [0-9a-z] (12 random characters; the digits of a
+// process id in files left by earlier versions).
 bool is_temporary_of(std::string_view file, std::string_view name);
 
 // A path given on the command line with the option that named it ("-o", "--svg", "input").
