@@ -56,7 +56,7 @@ def run(*args, timeout=600):
 
 def expect(label, args, codes=(1,), says=()):
     code, err, peak_mb, seconds = run(*args)
-    print(f"{label}: exit {code}, peak {peak_mb:.0f} MB, {seconds:.1f} s")
+    print(f"{label}: exit {code}, peak {peak_mb:.0f} MB, {seconds:.1f} s", flush=True)
     check(f"{label}: exit {' or '.join(map(str, codes))}", code in codes, err[-400:])
     check(f"{label}: peak memory under {PEAK_BOUND_MB} MB", peak_mb < PEAK_BOUND_MB, f"{peak_mb:.0f} MB")
     for words in says:
