@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 #include <string_view>
 #include <system_error>
 #include <utility>
@@ -46,10 +46,14 @@ void add_directory(const fs::path& root, std::vector<Drawing>& out) {
 // list travels with its drawings). Folders listed are searched like folders given; a listed file
 // that does not exist stays in: it fails as invalid-input and shows up in the report.
 void add_list(const fs::path& list, std::vector<Drawing>& out) {
-  std::ifstream in(list);
-  if (!in)
-    throw BatchError(kInvalidInput,
-                     "curvemesh: " + list.string() + ": cannot read the list (" + std::strerror(errno) + ")");
+  // A list of a whole collection is under a megabyte; a FIFO or /dev/zero given as one is refused.
+  constexpr std::uint64_t kMaxListBytes = std::uint64_t(1) << 30;
+  std::istringstream in;
+  try {
+    in.str(base::read_input_file(list.string(), kMaxListBytes, ""));
+  } catch (const base::InputFileError& e) {
+    throw BatchError(kInvalidInput, std::string("curvemesh: ") + e.what() + " (a list of drawings)");
+  }
   std::string line;
   while (std::getline(in, line)) {
     line = line.substr(0, line.find('#'));

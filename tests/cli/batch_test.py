@@ -630,6 +630,13 @@ for name, args in usage.items():
     check(f"usage: {name}: exit 2", r.returncode == 2, f"exit {r.returncode}: {r.stderr}")
 r, _ = run("batch", inputs)
 check("usage: no -o: exit 2", r.returncode == 2, f"exit {r.returncode}")
+# A list of drawings that is a FIFO nobody writes to, or a device that never ends: refused at once.
+list_fifo = os.path.join(root, "list.fifo")
+os.mkfifo(list_fifo)
+for name in (list_fifo, "/dev/zero"):
+    r, _ = run("batch", name, "-o", os.path.join(root, "out-nonregular"))
+    check(f"a list that is {name}: exit 1, not a regular file", r.returncode == 1 and "not a regular file" in r.stderr,
+          f"exit {r.returncode}: {r.stderr}")
 r, _ = run("batch", "--help")
 check("batch --help explains every option", r.returncode == 0 and all(
     o in r.stdout for o in ("--jobs", "--timeout", "--memory-limit", "--report", "--force", "--shard", "--linear",
