@@ -7,7 +7,7 @@
 // (curvemesh::Error, invalid_input), an output the exact check does not certify, or a run over
 // libFuzzer's -timeout (FUZZ_PIPELINE_SVG, below, writes an input's soup as a drawing instead).
 // fuzz/pipeline.dict has the operation bytes and telling numbers;
-// fuzz/pipeline-seeds/ a seed corpus (see the README's "Fuzzing").
+// fuzz/pipeline-seeds/ a seed corpus (see docs/testing.md, "Fuzzing").
 //
 // Layout of the input, read from its last byte backwards (FuzzedDataProvider's order; each
 // number's bytes most significant first): one byte picks the scale (10^-6 … 10^12) of the whole

@@ -23,6 +23,8 @@ packages=(
   time
   # a one-node Slurm cluster for scripts/slurm-batch's test and scripts/slurm-compare
   slurm-wlm munge
+  # the C++ API reference (cmake --build build --target doc) and its test, docs_cpp_api
+  doxygen
 )
 
 if [ $# -gt 0 ]; then

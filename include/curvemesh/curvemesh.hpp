@@ -49,8 +49,11 @@ class CURVEMESH_API Mesh {
  public:
   // 3: cubic triangles of 10 nodes and lines of 4; 1 (Parameters::linear): 3 and 2.
   int order() const;
+  // How many nodes: the length of nodes().
   std::size_t node_count() const;
+  // How many triangles: triangles() holds nodes_per_triangle() ids for each.
   std::size_t triangle_count() const;
+  // How many feature lines: lines() holds nodes_per_line() ids for each.
   std::size_t line_count() const;
 
   // (x, y) per node, in the drawing's units (SVG's user space: y points down).
@@ -59,10 +62,13 @@ class CURVEMESH_API Mesh {
   // (as seen with y up), then two nodes on each edge 0→1, 1→2, 2→0 from its first corner on,
   // then the centre.
   const std::vector<std::int64_t>& triangles() const;
+  // 10 for a curved mesh, 3 for a linear one (0 when empty).
   int nodes_per_triangle() const;
   // Node ids of the feature lines, nodes_per_line() per line: both ends, then the inner nodes.
   const std::vector<std::int64_t>& lines() const;
+  // 4 for a curved mesh, 2 for a linear one (0 when empty).
   int nodes_per_line() const;
+  // Per line: what it lies on (a curve followed exactly, a curve kept within ε, the box).
   const std::vector<LineTag>& line_tags() const;
   // Per line: the input curve it lies on (the index of a curve given to mesh_curves, or of the
   // reader's curve in document order), -1 for the box's sides (and for every line of a .poly
@@ -102,7 +108,9 @@ CURVEMESH_API Mesh mesh_curves(const std::vector<Curve>& curves, const Parameter
 // The verdict of `curvemesh check` on a mesh as a file holds it: every element's Jacobian
 // determinant decided on the whole element with exact rationals on the coordinates as written.
 struct CheckReport {
+  // The elements' order as the file holds them: 1 (3 nodes), 2 (6 nodes) or 3 (10 nodes).
   int order = 0;
+  // How many triangles were checked.
   std::size_t triangles = 0;
   std::size_t invalid = 0;         // elements not certified positive (0 for a valid mesh)
   std::size_t undecided = 0;       // of those, the ones the exact test could not decide

@@ -58,13 +58,16 @@ struct CURVEMESH_API Parameters {
 // "curvemesh: "; it names the input (file, line and element where it can).
 class CURVEMESH_API Error : public std::runtime_error {
  public:
+  // What failed; each kind is one of the command line's exit codes.
   enum class Kind {
     invalid_parameters,  // Parameters::validate refused them (the command line's exit code 2)
     invalid_input,       // the drawing cannot be read or has nothing to mesh (exit code 1)
     output,              // a file could not be written (exit code 1)
     internal,            // a mesh that could not be made valid and certified: a bug (exit code 3)
   };
+  // An error of this kind with this message (what() returns it).
   Error(Kind kind, const std::string& message) : std::runtime_error(message), kind_(kind) {}
+  // What failed.
   Kind kind() const { return kind_; }
 
  private:

@@ -217,7 +217,7 @@ text = seen.decode(errors="replace")
 check("progress on a terminal: one line redrawn in place, cleared at the end",
       proc.returncode == 0 and "\r\x1b[K" in text and "optimize pass" in text and "\n" not in text.strip("\r\x1b[K")
       and text.endswith("\r\x1b[K"), repr(text[-300:]))
-# The README's soups for measuring large inputs (scripts/random-soup): the same file for the same
+# The soups of docs/measurements/performance.md (scripts/random-soup): the same file for the same
 # arguments, and a small dense one (every pair of curves crossing) meshes and certifies, its
 # crossings triangulated on their rounded positions.
 soup_script = os.path.join(examples, "..", "scripts", "random-soup")

@@ -312,7 +312,7 @@ elif mode == "--cluster":
         print(f"SKIP: Slurm cannot run here: {e}")
         sys.exit(SKIP)
     print(f"{time.monotonic() - started:.1f} s with the cluster, stopping included")
-    # scripts/slurm-compare (the README's measurement) on the same inputs, with a cluster of its own.
+    # scripts/slurm-compare (docs/measurements/batch-and-slurm.md) on the same inputs, with a cluster of its own.
     compare = os.path.normpath(os.path.join(here, "..", "..", "scripts", "slurm-compare"))
     r = subprocess.run([compare, inputs, "--tasks", "2", "--jobs", "2", "--curvemesh", binary], capture_output=True,
                        text=True, timeout=240, stdin=subprocess.DEVNULL)

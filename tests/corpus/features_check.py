@@ -4,7 +4,7 @@ JSON that `curvemesh features --processed` writes (nothing of the stage's own bo
 trusted):
 
   1. primary polylines never cross: no two primary edges intersect except at a shared endpoint;
-  2. the μ rule (README, "Feature processing"): two primary edges are at least μ apart, unless
+  2. the μ rule (docs/method.md, "Feature processing"): two primary edges are at least μ apart, unless
      they belong to one input curve and are joined along it by at most π/2·μ of polyline without
      folding back (adjacent edges meet at least at the junction angle, others point the same
      way), or share an endpoint and meet there at an angle of at least the junction angle;
