@@ -46,7 +46,7 @@ class PathParser {
         command = c;
         in_.advance();
       } else if (!in_.number_follows() || command == 'Z' || command == 'z') {
-        const std::string shown = (c >= 32 && c < 127) ? std::string(1, c) : "\\x" + std::to_string(int(c) & 0xff);
+        const std::string shown = in_.shown_next();
         throw SyntaxError(is_command_like(c) ? "unknown path command '" + shown + "'"
                                               : "unexpected '" + shown + "' in path data",
                           in_.position());

@@ -74,7 +74,7 @@ std::vector<Subpath> polyline_subpaths(std::string_view points, bool closed, boo
   }
   in.skip_whitespace();
   if (!in.at_end() && !*odd_count)
-    throw SyntaxError(std::string("unexpected '") + in.peek() + "' in points", in.position());
+    throw SyntaxError("unexpected '" + in.shown_next() + "' in points", in.position());
   if (pts.empty()) return {};
   Subpath sp;
   sp.start = pts.front();
