@@ -14,6 +14,7 @@
 #include <unordered_set>
 #include <utility>
 
+#include "base/text.hpp"
 #include "svg/entities.hpp"
 #include "svg/error.hpp"
 #include "svg/numbers.hpp"
@@ -42,6 +43,12 @@ struct Context {
   int depth = 0;
 };
 
+// Bytes of malformed UTF-8 replaced so far, and the line of the first.
+struct TextRepairs {
+  std::size_t bytes = 0;
+  int first_line = 0;
+};
+
 // Which axis a length is measured along (for percentages, SVG 1.1 §7.10).
 enum class Axis { x, y, other };
 
@@ -63,6 +70,9 @@ class Reader {
  private:
   // --- document structure ---
   void parse_document();
+  void prepare_tree();
+  void prepare_node(pugi::xml_node node, TextRepairs& repairs);
+  std::optional<std::string> repaired(std::string_view s, pugi::xml_node node, TextRepairs& repairs);
   void index_document(pugi::xml_node root);
   std::string_view local_name(pugi::xml_node node) const;  // "" for elements of other namespaces
   std::string attr(pugi::xml_node node, const char* name) const;
@@ -101,6 +111,7 @@ class Reader {
   std::unordered_map<std::string, pugi::xml_node> ids_;
   std::unordered_map<const void*, int> element_index_;
   std::unordered_map<const void*, int> source_index_;
+  std::unordered_map<const void*, int> renamed_lines_;  // elements whose name was repaired
   std::unordered_set<std::string> svg_prefixes_;  // namespace prefixes bound to SVG ("svg" usually)
   bool default_namespace_is_svg_ = true;
   StyleSheet stylesheet_;
@@ -145,13 +156,7 @@ std::string_view Reader::local_name(pugi::xml_node node) const {
 }
 
 std::string Reader::attr(pugi::xml_node node, const char* name) const {
-  const char* value = node.attribute(name).value();
-  if (entities_.empty() || !std::strchr(value, '&')) return value;
-  try {
-    return entities_.expand(value);
-  } catch (const InputError& e) {
-    fail(node, e.message());
-  }
+  return node.attribute(name).value();
 }
 
 std::string Reader::href(pugi::xml_node node) const {
@@ -164,18 +169,90 @@ std::string Reader::href(pugi::xml_node node) const {
 
 int Reader::line_of(pugi::xml_node node) const {
   const std::ptrdiff_t offset = node.offset_debug();
-  if (offset < 0) return 0;
+  if (offset < 0) {
+    const auto renamed = renamed_lines_.find(node.internal_object());
+    return renamed == renamed_lines_.end() ? 0 : renamed->second;
+  }
   const auto it = std::upper_bound(line_starts_.begin(), line_starts_.end(), static_cast<std::size_t>(offset));
   return static_cast<int>(it - line_starts_.begin());
 }
 
 std::string Reader::where(pugi::xml_node node) const {
-  std::string w = "line " + std::to_string(line_of(node)) + ", <" + node.name();
-  if (const char* id = node.attribute("id").value(); *id) w += std::string(" id=\"") + id + "\"";
+  // Repaired: a message may name an element before prepare_tree has reached it.
+  std::string w = "line " + std::to_string(line_of(node)) + ", <" + base::repair_utf8(node.name());
+  if (const char* id = node.attribute("id").value(); *id) w += " id=\"" + base::repair_utf8(id) + "\"";
   return w + ">";
 }
 
 void Reader::fail(pugi::xml_node node, const std::string& message) const { throw InputError(message, where(node)); }
+
+// The text is read as pugixml decoded it (it converts UTF-16 and Latin-1 to UTF-8, but passes
+// malformed UTF-8 through): entity references are expanded where the reader reads text
+// (attribute values, <style> sheets), then every name and value is made well-formed UTF-8, as a
+// browser decodes a malformed document. Nothing the reader passes on (ids, paints, warnings,
+// messages) can then break a JSON library. Iterative: a document of any depth is safe here.
+void Reader::prepare_tree() {
+  TextRepairs repairs;
+  pugi::xml_node node = doc_.first_child();
+  while (node) {
+    prepare_node(node, repairs);
+    if (const pugi::xml_node child = node.first_child()) {
+      node = child;
+      continue;
+    }
+    while (node && !node.next_sibling()) {
+      node = node.parent();
+      if (node.type() == pugi::node_document) node = pugi::xml_node();
+    }
+    if (node) node = node.next_sibling();
+  }
+  if (repairs.bytes > 0)
+    soup_.warnings.push_back("invalid UTF-8 replaced by U+FFFD (" + std::to_string(repairs.bytes) + " byte" +
+                             (repairs.bytes == 1 ? "" : "s") + ", the first at line " +
+                             std::to_string(repairs.first_line) + ")");
+}
+
+// `s` made well-formed UTF-8, counted in `repairs` at the line of `node`; nothing when it is
+// well-formed already (the common case, which costs one scan).
+std::optional<std::string> Reader::repaired(std::string_view s, pugi::xml_node node, TextRepairs& repairs) {
+  if (base::valid_utf8(s)) return std::nullopt;
+  std::size_t replaced = 0;
+  std::string out = base::repair_utf8(s, &replaced);
+  if (repairs.bytes == 0) repairs.first_line = line_of(node);
+  repairs.bytes += replaced;
+  return out;
+}
+
+void Reader::prepare_node(pugi::xml_node node, TextRepairs& repairs) {
+  if (auto name = repaired(node.name(), node, repairs)) {
+    renamed_lines_[node.internal_object()] = line_of(node);  // pugixml loses the offset of a renamed node
+    node.set_name(name->c_str());
+  }
+  const auto expanded = [&](std::string_view value) -> std::optional<std::string> {
+    if (entities_.empty() || value.find('&') == std::string_view::npos) return std::nullopt;
+    try {
+      return entities_.expand(value);
+    } catch (const InputError& e) {
+      fail(node.type() == pugi::node_element ? node : node.parent(), e.message());
+    }
+  };
+  if (node.type() == pugi::node_pcdata || node.type() == pugi::node_cdata) {
+    // Of all text, the reader reads style sheets only (any prefix: the namespaces are not known yet).
+    const std::string_view parent = node.parent().name();
+    const bool sheet = parent == "style" || parent.ends_with(":style");
+    std::optional<std::string> text = sheet ? expanded(node.value()) : std::nullopt;
+    if (auto fixed = repaired(text ? *text : std::string_view(node.value()), node, repairs))
+      text = std::move(fixed);
+    if (text) node.set_value(text->c_str());
+  }
+  for (pugi::xml_attribute a : node.attributes()) {
+    if (auto name = repaired(a.name(), node, repairs)) a.set_name(name->c_str());
+    std::optional<std::string> value = expanded(a.value());
+    if (auto fixed = repaired(value ? *value : std::string_view(a.value()), node, repairs))
+      value = std::move(fixed);
+    if (value) a.set_value(value->c_str());
+  }
+}
 
 void Reader::warn_once(const std::string& key, const std::string& message) {
   if (warned_.insert(key).second) soup_.warnings.push_back(message);
@@ -208,7 +285,6 @@ void Reader::index_document(pugi::xml_node root) {
       std::string css;
       for (const pugi::xml_node child : node.children())
         if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) css += child.value();
-      if (!entities_.empty()) css = entities_.expand(css);
       stylesheet_.add(css);
     }
     // Push children in reverse so they are visited in document order.
@@ -609,6 +685,7 @@ void Reader::emit(pugi::xml_node node, std::string_view tag, const std::vector<S
 
 FeatureSoup Reader::read() {
   parse_document();
+  prepare_tree();
   const pugi::xml_node root = doc_.document_element();
   if (!root) throw InputError("no root element");
   const std::string_view root_name = root.name();
@@ -693,8 +770,10 @@ FeatureSoup read_svg(std::string_view text, const ReadOptions& options, const st
   try {
     return Reader(text, options).read();
   } catch (const InputError& e) {
-    // Prefix the file name once, here, so every message names it.
-    throw InputError(e.message(), e.where().empty() ? filename : filename + ": " + e.where());
+    // Prefix the file name once, here, so every message names it (shown as it may be printed:
+    // a file's name can hold any byte).
+    const std::string name = base::printable(filename);
+    throw InputError(e.message(), e.where().empty() ? name : name + ": " + e.where());
   }
 }
 

@@ -26,14 +26,16 @@ struct ReadOptions {
   // file can otherwise describe an exponentially large drawing (Limits, the public defaults).
   std::size_t max_curves = Limits{}.max_curves;
   std::size_t max_elements = Limits{}.max_elements;
-  // Refuse documents whose entity references expand to more characters than this.
+  // Refuse documents whose entity references expand to more characters than this in all: the
+  // declarations' own expansion and every reference in every attribute and style sheet, summed.
   std::size_t max_entity_expansion = 1u << 24;
   // read_svg_file refuses larger files.
   std::uint64_t max_input_bytes = static_cast<std::uint64_t>(Limits{}.max_input_mb * 1048576.0);
 };
 
 // Reads SVG text. `filename` is only used in messages. Throws InputError when the document is
-// refused (message names the line and element where it can).
+// refused (message names the line and element where it can). Malformed UTF-8 is replaced by
+// U+FFFD, with a warning: every string of the soup, and every message, is well-formed UTF-8.
 FeatureSoup read_svg(std::string_view text, const ReadOptions& options = {}, const std::string& filename = "<input>");
 
 // Reads an SVG file; throws InputError when it cannot be opened or is refused.

@@ -1,0 +1,154 @@
+// The SVG reader on documents made to break it. Each is read, or refused with an InputError that
+// names the limit, and what is read is well-formed.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "base/text.hpp"
+#include "svg/error.hpp"
+#include "svg/reader.hpp"
+
+using namespace curvemesh::svg;
+using curvemesh::base::valid_utf8;
+using testing::HasSubstr;
+
+namespace {
+
+const std::string kOpen =
+    "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\">";
+
+std::string doc(const std::string& body) {
+  return kOpen + body + "</svg>";
+}
+
+ReadOptions options() {
+  ReadOptions o;
+  o.degenerate_tolerance_rel = 1e-8;
+  return o;
+}
+
+// The message read_svg throws for `text`, or "" when it reads it.
+std::string error_of(const std::string& text, const ReadOptions& o = options()) {
+  try {
+    read_svg(text, o, "bad.svg");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Every string the reader put into the soup.
+std::vector<std::string> strings_of(const FeatureSoup& s) {
+  std::vector<std::string> out = s.warnings;
+  for (const SourceElement& e : s.sources) out.insert(out.end(), {e.tag, e.id});
+  for (const SoupCurve& c : s.curves)
+    for (const Paint* p : {&c.fill, &c.stroke, &c.left, &c.right}) out.push_back(p->to_string());
+  for (const FillLayer& f : s.fills) out.push_back(f.fill.to_string());
+  return out;
+}
+
+bool has_warning(const FeatureSoup& s, const std::string& fragment) {
+  for (const std::string& w : s.warnings)
+    if (w.find(fragment) != std::string::npos) return true;
+  return false;
+}
+
+}  // namespace
+
+TEST(HostileSvg, InvalidUtf8IsRepairedWherever) {
+  const std::vector<std::string> documents = {
+      // The command line's example: a class and a fill.
+      doc("<path class=\"\xff\" d=\"M0 0 L10 0 L5 8 Z\" fill=\"r\xff"
+          "ed\"/>"),
+      // An id, a paint's reference and an element name of another namespace.
+      doc("<path id=\"p\xfe\" d=\"M0 0 L1 1\" stroke=\"url(#g\xc3)\"/><x:q\xff xmlns:x=\"urn:x\"/>"),
+      // An attribute's name, a style sheet, text.
+      doc("<style>.a\xff{fill:#f00\xff}</style><path class=\"a\xff\" d=\"M0 0 L1 1\" "
+          "da\xfft=\"1\"/><text>\xc0</text>"),
+      // An entity's value, expanded into an id; a truncated sequence at the end of a value.
+      "<!DOCTYPE svg [<!ENTITY e \"q\xed\xa0\x80\">]>" +
+          doc("<path id=\"&e;\" d=\"M0 0 L1 1\" fill=\"#00f\xe2\x82\"/>"),
+  };
+  for (const std::string& text : documents) {
+    SCOPED_TRACE(curvemesh::base::printable(text));
+    ASSERT_FALSE(valid_utf8(text));
+    const FeatureSoup s = read_svg(text, options(), "x.svg");
+    ASSERT_FALSE(s.curves.empty());
+    for (const std::string& str : strings_of(s))
+      EXPECT_TRUE(valid_utf8(str)) << curvemesh::base::printable(str);
+    EXPECT_TRUE(has_warning(s, "invalid UTF-8 replaced by U+FFFD (")) << testing::PrintToString(s.warnings);
+    nlohmann::json ids = nlohmann::json::array();
+    for (const SourceElement& e : s.sources) ids.push_back(e.id);
+    for (const std::string& w : s.warnings) ids.push_back(w);
+    EXPECT_NO_THROW((void)ids.dump());
+  }
+  // The count and the line of the first: the bytes of the class and of the fill, on line 2.
+  const FeatureSoup s = read_svg(kOpen +
+                                     "\n<path class=\"\xff\" d=\"M0 0 L10 0 L5 8 Z\" fill=\"r\xff"
+                                     "ed\"/></svg>",
+                                 options(), "x.svg");
+  EXPECT_TRUE(has_warning(s, "invalid UTF-8 replaced by U+FFFD (2 bytes, the first at line 2)"))
+      << testing::PrintToString(s.warnings);
+  // The repaired id is the one <use> finds.
+  const FeatureSoup used =
+      read_svg(doc("<defs><path id=\"a\xff\" d=\"M0 0 L1 1\"/></defs><use href=\"#a\xff\"/>"));
+  EXPECT_EQ(used.curves.size(), 1u);
+}
+
+TEST(HostileSvg, MessagesAreWellFormed) {
+  // A malformed path in an element with a malformed id: the message quotes the replacement
+  // character whole, not one byte of it.
+  const std::string e = error_of(doc("\n<path id=\"\xff\" d=\"M0 0 L1 1 \xff\"/>"));
+  EXPECT_TRUE(valid_utf8(e)) << curvemesh::base::printable(e);
+  EXPECT_THAT(e, HasSubstr("line 2, <path id=\"\xef\xbf\xbd\">: bad path data: unexpected '\xef\xbf\xbd'"));
+  const std::string points = error_of(doc("<polygon points=\"0 0 1 1 \xe9\"/>"));
+  EXPECT_THAT(points, HasSubstr("bad points: unexpected '\xef\xbf\xbd' in points"));
+  // A malformed transform is ignored with a warning that quotes it.
+  const FeatureSoup s = read_svg(doc("<line x2=\"1\" transform=\"scale(\xe9)\"/>"), options());
+  EXPECT_TRUE(has_warning(s, "ignored a malformed transform (expected a number, found '\xef\xbf\xbd')"))
+      << testing::PrintToString(s.warnings);
+  // A file's name is shown escaped.
+  try {
+    read_svg("<svg", options(), "a\xff.svg");
+    ADD_FAILURE() << "read";
+  } catch (const InputError& error) {
+    EXPECT_THAT(error.what(), testing::StartsWith("a\\xff.svg: line 1: not well-formed XML"));
+  }
+}
+
+TEST(HostileSvg, EntityExpansionIsABudgetForTheWholeDocument) {
+  // e4 expands to 100,000 characters: 200 references to it, each well below 16 Mi characters,
+  // are 20 million in all.
+  std::string dtd = "<!DOCTYPE svg [<!ENTITY e0 \"fill:red;x\">";
+  for (int k = 1; k <= 4; ++k) {
+    dtd += "<!ENTITY e" + std::to_string(k) + " \"";
+    for (int i = 0; i < 10; ++i) dtd += "&e" + std::to_string(k - 1) + ";";
+    dtd += "\">";
+  }
+  dtd += "]>";
+  std::string many, few;
+  for (int i = 0; i < 200; ++i) many += "<path style=\"&e4;\" d=\"M0 0 L1 1\"/>";
+  for (int i = 0; i < 100; ++i) few += "<path style=\"&e4;\" d=\"M0 0 L1 1\"/>";
+  EXPECT_THAT(
+      error_of(dtd + doc(many)),
+      HasSubstr("entity references expand to more than 16777216 characters in all (a limit of the reader)"));
+  EXPECT_EQ(read_svg(dtd + doc(few), options()).curves.size(), 100u);
+  // The declarations alone count towards it.
+  std::string bomb = "<!DOCTYPE svg [<!ENTITY a0 \"aaaaaaaaaa\">";
+  for (int k = 1; k <= 8; ++k) {
+    bomb += "<!ENTITY a" + std::to_string(k) + " \"";
+    for (int i = 0; i < 10; ++i) bomb += "&a" + std::to_string(k - 1) + ";";
+    bomb += "\">";
+  }
+  EXPECT_THAT(error_of(bomb + "]>" + doc("")),
+              HasSubstr("DOCTYPE: entity references expand to more than 16777216"));
+  // Ampersands without a reference are copied, not searched past.
+  const FeatureSoup s = read_svg("<!DOCTYPE svg [<!ENTITY e \"1\">]>" +
+                                 doc("<path id=\"" + std::string(1 << 20, '&') + "\" d=\"M0 0 L&e; 1\"/>"));
+  ASSERT_EQ(s.curves.size(), 1u);
+  EXPECT_EQ(s.curves[0].bezier.p[3].x(), 1.0);
+}
