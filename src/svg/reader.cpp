@@ -5,6 +5,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -86,6 +87,7 @@ class Reader {
   void walk(pugi::xml_node node, Context ctx);
   void walk_children(pugi::xml_node node, const Context& ctx);
   bool apply_style(pugi::xml_node node, std::string_view tag, Context& ctx);  // false: display:none
+  bool apply_declaration(pugi::xml_node node, std::string_view name, std::string_view value, Context& ctx);
   void apply_side_colors(pugi::xml_node node, Context& ctx);
   void apply_transform(pugi::xml_node node, Context& ctx);
   void walk_use(pugi::xml_node node, Context ctx);
@@ -285,7 +287,11 @@ void Reader::index_document(pugi::xml_node root) {
       std::string css;
       for (const pugi::xml_node child : node.children())
         if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) css += child.value();
-      stylesheet_.add(css);
+      try {
+        stylesheet_.add(css);
+      } catch (const InputError& e) {
+        fail(node, e.message());
+      }
     }
     // Push children in reverse so they are visited in document order.
     std::vector<pugi::xml_node> children;
@@ -300,47 +306,61 @@ void Reader::index_document(pugi::xml_node root) {
 
 bool Reader::apply_style(pugi::xml_node node, std::string_view tag, Context& ctx) {
   // Cascade, lowest precedence first: presentation attributes, style sheet, style attribute.
-  static constexpr const char* kProperties[] = {"fill",       "stroke",    "color", "display",
-                                                "visibility", "fill-rule", "clip-path", "mask"};
-  Declarations decls;
-  for (const char* p : kProperties)
-    if (has_attr(node, p)) decls.emplace_back(p, attr(node, p));
-  if (!stylesheet_.empty()) stylesheet_.match(tag, node.attribute("id").value(), attr(node, "class"), decls);
-  if (has_attr(node, "style")) {
-    const Declarations inline_decls = parse_declarations(attr(node, "style"));
-    decls.insert(decls.end(), inline_decls.begin(), inline_decls.end());
+  // Visited in place, never gathered: a style attribute may be as large as the file.
+  std::vector<const Declarations*> sheet;
+  if (!stylesheet_.empty()) {
+    try {
+      stylesheet_.match(tag, node.attribute("id").value(), node.attribute("class").value(), sheet);
+    } catch (const InputError& e) {
+      fail(node, e.message());
+    }
   }
-  if (decls.empty()) return true;
-
+  const auto visit = [&](const std::function<bool(std::string_view, std::string_view)>& f) {
+    for (const char* p : kStyleProperties)
+      if (has_attr(node, p) && !f(p, node.attribute(p).value())) return false;
+    for (const Declarations* block : sheet)
+      for (const auto& [name, value] : *block)
+        if (!f(name, value)) return false;
+    return for_each_declaration(node.attribute("style").value(), f);
+  };
   // `color` first: currentColor in fill/stroke refers to this element's computed colour.
-  for (const auto& [name, value] : decls)
+  visit([&](std::string_view name, std::string_view value) {
     if (name == "color")
       if (auto c = parse_color(value)) ctx.color = *c;
-  for (const auto& [name, value] : decls) {
-    if (name == "fill") {
-      if (auto p = parse_paint(value, ctx.color)) {
-        ctx.fill = *p;
-      } else if (trim_svg_whitespace(value) != "inherit") {
-        // Not a paint we can read: leave the element unfilled rather than guess its colour.
-        ctx.fill = Paint{};
-        warn_once("bad-fill:" + std::string(value), where(node) + ": fill=\"" + std::string(value) +
-                                                        "\" is not a paint this reader understands: left unfilled");
-      }
-    } else if (name == "fill-rule") {
-      const std::string_view v = trim_svg_whitespace(value);
-      if (v == "evenodd") ctx.fill_rule = FillRule::evenodd;
-      if (v == "nonzero") ctx.fill_rule = FillRule::nonzero;
-    } else if (name == "clip-path" || name == "mask") {
-      if (trim_svg_whitespace(value) != "none") ++soup_.clipped_elements;
-    } else if (name == "stroke") {
-      if (auto p = parse_paint(value, ctx.color)) ctx.stroke = *p;
-    } else if (name == "display") {
-      if (trim_svg_whitespace(value) == "none") return false;
-    } else if (name == "visibility") {
-      const std::string_view v = trim_svg_whitespace(value);
-      if (v == "hidden" || v == "collapse") ctx.visible = false;
-      if (v == "visible") ctx.visible = true;
+    return true;
+  });
+  return visit([&](std::string_view name, std::string_view value) {
+    return apply_declaration(node, name, value, ctx);
+  });
+}
+
+// One declaration of the cascade; false when it hides the element (display: none).
+bool Reader::apply_declaration(pugi::xml_node node, std::string_view name, std::string_view value,
+                               Context& ctx) {
+  if (name == "fill") {
+    if (auto p = parse_paint(value, ctx.color)) {
+      ctx.fill = *p;
+    } else if (trim_svg_whitespace(value) != "inherit") {
+      // Not a paint we can read: leave the element unfilled rather than guess its colour.
+      ctx.fill = Paint{};
+      warn_once("bad-fill:" + std::string(value),
+                where(node) + ": fill=\"" + std::string(value) +
+                    "\" is not a paint this reader understands: left unfilled");
     }
+  } else if (name == "fill-rule") {
+    const std::string_view v = trim_svg_whitespace(value);
+    if (v == "evenodd") ctx.fill_rule = FillRule::evenodd;
+    if (v == "nonzero") ctx.fill_rule = FillRule::nonzero;
+  } else if (name == "clip-path" || name == "mask") {
+    if (trim_svg_whitespace(value) != "none") ++soup_.clipped_elements;
+  } else if (name == "stroke") {
+    if (auto p = parse_paint(value, ctx.color)) ctx.stroke = *p;
+  } else if (name == "display") {
+    if (trim_svg_whitespace(value) == "none") return false;
+  } else if (name == "visibility") {
+    const std::string_view v = trim_svg_whitespace(value);
+    if (v == "hidden" || v == "collapse") ctx.visible = false;
+    if (v == "visible") ctx.visible = true;
   }
   return true;
 }

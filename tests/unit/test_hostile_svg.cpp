@@ -11,6 +11,7 @@
 #include "base/text.hpp"
 #include "svg/error.hpp"
 #include "svg/reader.hpp"
+#include "svg/style.hpp"
 
 using namespace curvemesh::svg;
 using curvemesh::base::valid_utf8;
@@ -151,4 +152,38 @@ TEST(HostileSvg, EntityExpansionIsABudgetForTheWholeDocument) {
                                  doc("<path id=\"" + std::string(1 << 20, '&') + "\" d=\"M0 0 L&e; 1\"/>"));
   ASSERT_EQ(s.curves.size(), 1u);
   EXPECT_EQ(s.curves[0].bezier.p[3].x(), 1.0);
+}
+
+TEST(HostileSvg, StyleSheetsAreBounded) {
+  std::string selectors;
+  for (std::size_t i = 0; i <= kMaxStyleSelectors; ++i) selectors += ".a,";
+  EXPECT_THAT(error_of(doc("<style>" + selectors + ".a{fill:red}</style>")),
+              HasSubstr("<style>: the style sheets have more selectors than 100000 (a limit of the reader)"));
+  std::string block;
+  for (std::size_t i = 0; i <= kMaxStyleDeclarations; ++i) block += "x:y;";
+  EXPECT_THAT(error_of(doc("<style>.a{" + block + "}</style>")),
+              HasSubstr("the style sheets have more declarations than 1000000 (a limit of the reader)"));
+  // Within those, matching: a list of selectors before a long block, for each element (what
+  // once took 4 GB: every selector kept its own copy of the block) ...
+  std::string list, decls, elements;
+  for (int i = 0; i < 10000; ++i) list += ".a,";
+  for (int i = 0; i < 10000; ++i) decls += "fill:red;";
+  for (int i = 0; i < 100; ++i) elements += "<path class=\"a\" d=\"M0 0 L1 1\"/>";
+  const std::string limit =
+      "matching the style sheets takes more steps (rules tried, declarations taken) than 20000000";
+  EXPECT_THAT(error_of(doc("<style>" + list + ".a{" + decls + "}</style>" + elements)), HasSubstr(limit));
+  // ... rules that every element matches ...
+  std::string rules;
+  for (int i = 0; i < 20000; ++i) rules += "*{fill:red}";
+  for (int i = 0; i < 1000; ++i) elements += "<path d=\"M0 0 L1 1\"/>";
+  EXPECT_THAT(error_of(doc("<style>" + rules + "</style>" + elements)), HasSubstr(limit));
+  // ... and a long value taken by every element.
+  EXPECT_THAT(error_of(doc("<style>*{fill:" + std::string(1 << 20, 'x') + "}</style>" + elements)),
+              HasSubstr(limit));
+  // A sheet of drawings' size is read as before: the last selector of a list and the class
+  // named twice match.
+  const FeatureSoup s = read_svg(
+      doc("<style>.b, .a { fill: #00f; font-family: x }</style><path class=\"a a\" d=\"M0 0 L1 1\"/>"));
+  ASSERT_EQ(s.curves.size(), 1u);
+  EXPECT_EQ(s.curves[0].fill.to_string(), "#0000ff");
 }
