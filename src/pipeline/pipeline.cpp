@@ -260,7 +260,7 @@ Result run(const Source& source, const Parameters& parameters, const RunOptions&
   // Read, and (unless stopping there) find the features.
   try {
     if (source.kind == Source::Kind::file && ends_with(source.path, ".poly")) {
-      r.features = features::read_poly(source.path);
+      r.features = features::read_poly(source.path, parameters.limits);
       r.resolved = resolve(parameters, finite_diagonal(r.features.box, source.name));
       r.features.lengths = r.resolved.features;
       stats["seconds"]["read"] = seconds_since(t);

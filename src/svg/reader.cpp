@@ -3,18 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <functional>
 #include <map>
 #include <numbers>
 #include <optional>
 #include <pugixml.hpp>
-#include <sstream>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
 
+#include "base/files.hpp"
 #include "base/text.hpp"
 #include "svg/entities.hpp"
 #include "svg/error.hpp"
@@ -798,14 +796,13 @@ FeatureSoup read_svg(std::string_view text, const ReadOptions& options, const st
 }
 
 FeatureSoup read_svg_file(const std::string& path, const ReadOptions& options) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError("is a directory, not a file", path);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot open the file", path);
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw InputError("cannot read the file", path);
-  return read_svg(buffer.str(), options, path);
+  std::string text;
+  try {
+    text = base::read_input_file(path, options.max_input_bytes, "--max-input-mb");
+  } catch (const base::InputFileError& e) {
+    throw input_error(e, path);
+  }
+  return read_svg(text, options, path);
 }
 
 }  // namespace curvemesh::svg

@@ -38,7 +38,9 @@ struct ReadOptions {
 // U+FFFD, with a warning: every string of the soup, and every message, is well-formed UTF-8.
 FeatureSoup read_svg(std::string_view text, const ReadOptions& options = {}, const std::string& filename = "<input>");
 
-// Reads an SVG file; throws InputError when it cannot be opened or is refused.
+// Reads an SVG file; throws InputError when it cannot be opened, is not a regular file (a FIFO or
+// a device is refused without waiting on it), is larger than options.max_input_bytes, or is
+// refused.
 FeatureSoup read_svg_file(const std::string& path, const ReadOptions& options = {});
 
 }  // namespace curvemesh::svg

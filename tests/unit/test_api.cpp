@@ -361,7 +361,7 @@ TEST(Api, CheckFileFindsAnInvertedElement) {
   EXPECT_EQ(message, dir / "broken.msh" + ": line 6: $Nodes: not closed: the file ends inside it");
   std::tie(kind, message) = error_of([&] { check_file(dir / "missing.msh"); });
   EXPECT_EQ(kind, Error::Kind::invalid_input);
-  EXPECT_EQ(message, dir / "missing.msh" + ": cannot be read");
+  EXPECT_EQ(message, dir / "missing.msh" + ": cannot open the file (No such file or directory)");
 }
 
 TEST(Api, WriteFailures) {
