@@ -80,6 +80,7 @@ class Reader {
   int line_of(pugi::xml_node node) const;
   std::string where(pugi::xml_node node) const;
   [[noreturn]] void fail(pugi::xml_node node, const std::string& message) const;
+  [[noreturn]] void too_many_curves(pugi::xml_node node) const;
 
   // --- walking ---
   void walk(pugi::xml_node node, Context ctx);
@@ -461,8 +462,8 @@ void Reader::walk(pugi::xml_node node, Context ctx) {
   if (++ctx.depth > options_.max_depth)
     fail(node, "elements nested deeper than " + std::to_string(options_.max_depth) + " levels (through <use>)");
   if (++instantiated_ > options_.max_elements)
-    fail(node, "the document expands to more than " + std::to_string(options_.max_elements) +
-                   " elements through <use>");
+    fail(node, "the document has more than " + std::to_string(options_.max_elements) +
+                   " elements, each <use> instance counted (--max-elements raises the limit)");
   if (!apply_style(node, tag, ctx)) return;
   apply_side_colors(node, ctx);
 
@@ -609,16 +610,25 @@ int Reader::source_of(pugi::xml_node node, std::string_view tag) {
   return it->second;
 }
 
+void Reader::too_many_curves(pugi::xml_node node) const {
+  fail(node, "the document has more than " + std::to_string(options_.max_curves) +
+                 " curves (--max-curves raises the limit)");
+}
+
 void Reader::draw_shape(pugi::xml_node node, std::string_view tag, const Context& ctx) {
   std::vector<Subpath> subpaths;
+  // What is left of the curves allowed, so that parsing stops there, before taking the memory.
+  const std::size_t allowed = options_.max_curves - curve_count_;
   if (tag == "path") {
     try {
       bool truncated = false;
-      subpaths = parse_path_data(attr(node, "d"), &truncated);
+      subpaths = parse_path_data(attr(node, "d"), &truncated, allowed);
       if (truncated)
         warn_once("truncated-path", where(node) + ": path data ends inside a command; drawn up to there");
     } catch (const SyntaxError& e) {
       fail(node, std::string("bad path data: ") + e.what() + " at offset " + std::to_string(e.offset()));
+    } catch (const TooManyPieces&) {
+      too_many_curves(node);
     }
   } else if (tag == "rect") {
     const double w = length(node, "width", Axis::x, ctx, 0), h = length(node, "height", Axis::y, ctx, 0);
@@ -643,10 +653,12 @@ void Reader::draw_shape(pugi::xml_node node, std::string_view tag, const Context
   } else {  // polyline, polygon
     try {
       bool odd = false;
-      subpaths = polyline_subpaths(attr(node, "points"), tag == "polygon", &odd);
+      subpaths = polyline_subpaths(attr(node, "points"), tag == "polygon", &odd, allowed);
       if (odd) warn_once("odd-points", "a points list with an odd number of coordinates: the last was dropped");
     } catch (const SyntaxError& e) {
       fail(node, std::string("bad points: ") + e.what() + " at offset " + std::to_string(e.offset()));
+    } catch (const TooManyPieces&) {
+      too_many_curves(node);
     }
   }
   emit(node, tag, subpaths, ctx);
@@ -692,9 +704,9 @@ void Reader::emit(pugi::xml_node node, std::string_view tag, const std::vector<S
       layer->subpaths.push_back(std::move(loop));
       out.filled = true;
     }
-    curve_count_ += out.segments.size();
-    if (curve_count_ > options_.max_curves)
-      fail(node, "the document has more than " + std::to_string(options_.max_curves) + " curves");
+    // A subpath without a segment becomes an isolated point, which costs as much as a curve.
+    curve_count_ += std::max<std::size_t>(1, out.segments.size());
+    if (curve_count_ > options_.max_curves) too_many_curves(node);
     pending_.push_back(std::move(out));
   }
 }

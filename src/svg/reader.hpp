@@ -23,7 +23,9 @@ struct ReadOptions {
   // Refuse documents nested deeper than this (elements inside elements, <use> included).
   int max_depth = 512;
   // Refuse documents that expand (through <use>) to more curves or elements than this: a small
-  // file can otherwise describe an exponentially large drawing (Limits, the public defaults).
+  // file can otherwise describe an exponentially large drawing (Limits, the public defaults). A
+  // subpath without a segment (a moveto alone, read as an isolated point) counts as a curve; path
+  // data and points lists are parsed no further than the curves left.
   std::size_t max_curves = Limits{}.max_curves;
   std::size_t max_elements = Limits{}.max_elements;
   // Refuse documents whose entity references expand to more characters than this in all: the

@@ -187,3 +187,29 @@ TEST(HostileSvg, StyleSheetsAreBounded) {
   ASSERT_EQ(s.curves.size(), 1u);
   EXPECT_EQ(s.curves[0].fill.to_string(), "#0000ff");
 }
+
+TEST(HostileSvg, LimitsNameTheirOptions) {
+  ReadOptions o = options();
+  o.max_curves = 1000;
+  std::string path = "M0 0";
+  for (int i = 0; i < 2000; ++i) path += " l1 1";
+  EXPECT_THAT(error_of(doc("<path d=\"" + path + "\"/>"), o),
+              HasSubstr("the document has more than 1000 curves (--max-curves raises the limit)"));
+  std::string points;
+  for (int i = 0; i < 2000; ++i) points += "1 1 ";
+  EXPECT_THAT(error_of(doc("<polyline points=\"" + points + "\"/>"), o), HasSubstr("more than 1000 curves"));
+  // A moveto alone becomes an isolated point, and counts as a curve.
+  std::string moves;
+  for (int i = 0; i < 2000; ++i) moves += "M1 1 ";
+  EXPECT_THAT(error_of(doc("<path d=\"" + moves + "\"/>"), o), HasSubstr("more than 1000 curves"));
+  // Exactly at the limit: read.
+  EXPECT_EQ(read_svg(doc("<path d=\"" + path.substr(0, 4 + 5 * 1000) + "\"/>"), o).curves.size(), 1000u);
+  o = options();
+  o.max_elements = 100;
+  std::string body = "<defs><path id=\"p\" d=\"M0 0 L1 1\"/></defs>";
+  for (int i = 0; i < 60; ++i) body += "<use href=\"#p\"/>";
+  EXPECT_THAT(
+      error_of(doc(body), o),
+      HasSubstr("the document has more than 100 elements, each <use> instance counted (--max-elements "
+                "raises the limit)"));
+}
