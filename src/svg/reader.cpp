@@ -48,6 +48,47 @@ struct TextRepairs {
   int first_line = 0;
 };
 
+// The lines of a text, found from offsets: the newlines counted before every block of 1 KiB (a
+// line start for each newline would take 8 bytes for every byte of a file of empty lines).
+class LineIndex {
+ public:
+  explicit LineIndex(std::string_view text) : text_(text) {
+    std::size_t count = 0;
+    for (std::size_t b = 0; b < text.size(); b += kBlock) {
+      before_.push_back(count);
+      count += std::count(text.begin() + b, text.begin() + std::min(b + kBlock, text.size()), '\n');
+    }
+    before_.push_back(count);
+  }
+  // The 1-based line of the byte at `offset` (the last line past the end).
+  int line_of(std::size_t offset) const {
+    offset = std::min(offset, text_.size());
+    const std::size_t block = offset / kBlock;
+    const auto from = text_.begin() + block * kBlock;
+    return static_cast<int>(1 + before_[block] + std::count(from, text_.begin() + offset, '\n'));
+  }
+
+ private:
+  static constexpr std::size_t kBlock = 1024;
+  std::string_view text_;
+  std::vector<std::size_t> before_;  // newlines before each block, and in all
+};
+
+// The element after `node` in document order below `root` (its descendants first), `depth`
+// following it; nothing after the last. Walks the tree in place: a document of many elements,
+// or of deep ones, takes no memory to go through.
+pugi::xml_node next_element(pugi::xml_node node, pugi::xml_node root, int& depth) {
+  for (pugi::xml_node child = node.first_child(); child; child = child.next_sibling())
+    if (child.type() == pugi::node_element) {
+      ++depth;
+      return child;
+    }
+  for (; node != root; node = node.parent(), --depth)
+    for (pugi::xml_node sibling = node.next_sibling(); sibling; sibling = sibling.next_sibling())
+      if (sibling.type() == pugi::node_element) return sibling;
+  return {};
+}
+
 // Which axis a length is measured along (for percentages, SVG 1.1 §7.10).
 enum class Axis { x, y, other };
 
@@ -62,7 +103,7 @@ struct PendingSubpath {
 
 class Reader {
  public:
-  Reader(std::string_view text, const ReadOptions& options) : text_(text), options_(options) {}
+  Reader(std::string_view text, const ReadOptions& options) : text_(text), options_(options), lines_(text) {}
 
   FeatureSoup read();
 
@@ -73,6 +114,7 @@ class Reader {
   void prepare_node(pugi::xml_node node, TextRepairs& repairs);
   std::optional<std::string> repaired(std::string_view s, pugi::xml_node node, TextRepairs& repairs);
   void index_document(pugi::xml_node root);
+  void number_sources(pugi::xml_node root);
   std::string_view local_name(pugi::xml_node node) const;  // "" for elements of other namespaces
   std::string attr(pugi::xml_node node, const char* name) const;
   bool has_attr(pugi::xml_node node, const char* name) const { return !node.attribute(name).empty(); }
@@ -108,9 +150,9 @@ class Reader {
 
   pugi::xml_document doc_;
   EntityTable entities_;
-  std::vector<std::size_t> line_starts_;
-  std::unordered_map<std::string, pugi::xml_node> ids_;
-  std::unordered_map<const void*, int> element_index_;
+  LineIndex lines_;
+  // Views of the id attributes' values, which stay in place once prepare_tree has run.
+  std::unordered_map<std::string_view, pugi::xml_node> ids_;
   std::unordered_map<const void*, int> source_index_;
   std::unordered_map<const void*, int> renamed_lines_;  // elements whose name was repaired
   std::unordered_set<std::string> svg_prefixes_;  // namespace prefixes bound to SVG ("svg" usually)
@@ -130,10 +172,6 @@ class Reader {
 // Document structure
 
 void Reader::parse_document() {
-  line_starts_.push_back(0);
-  for (std::size_t i = 0; i < text_.size(); ++i)
-    if (text_[i] == '\n') line_starts_.push_back(i + 1);
-
   entities_ = EntityTable::from_document(text_, options_.max_entity_expansion);
   for (const auto& name : entities_.external())
     warn_once("external-entity:" + name, "external entity '" + name + "' is not loaded");
@@ -142,9 +180,8 @@ void Reader::parse_document() {
       doc_.load_buffer(text_.data(), text_.size(), pugi::parse_default, pugi::encoding_auto);
   if (!result) {
     const std::size_t offset = result.offset < 0 ? 0 : static_cast<std::size_t>(result.offset);
-    const auto it = std::upper_bound(line_starts_.begin(), line_starts_.end(), offset);
     throw InputError(std::string("not well-formed XML: ") + result.description(),
-                     "line " + std::to_string(it - line_starts_.begin()));
+                     "line " + std::to_string(lines_.line_of(offset)));
   }
 }
 
@@ -174,8 +211,7 @@ int Reader::line_of(pugi::xml_node node) const {
     const auto renamed = renamed_lines_.find(node.internal_object());
     return renamed == renamed_lines_.end() ? 0 : renamed->second;
   }
-  const auto it = std::upper_bound(line_starts_.begin(), line_starts_.end(), static_cast<std::size_t>(offset));
-  return static_cast<int>(it - line_starts_.begin());
+  return lines_.line_of(static_cast<std::size_t>(offset));
 }
 
 std::string Reader::where(pugi::xml_node node) const {
@@ -259,8 +295,8 @@ void Reader::warn_once(const std::string& key, const std::string& message) {
   if (warned_.insert(key).second) soup_.warnings.push_back(message);
 }
 
-// One pass over the whole document (iterative, so any depth is safe here): ids, document order,
-// <style> sheets, namespace prefixes and the nesting depth.
+// One pass over the whole document (iterative, so any depth is safe here): ids, <style> sheets,
+// namespace prefixes and the nesting depth.
 void Reader::index_document(pugi::xml_node root) {
   for (const pugi::xml_attribute a : root.attributes()) {
     const std::string_view n = a.name();
@@ -273,14 +309,10 @@ void Reader::index_document(pugi::xml_node root) {
       svg_prefixes_.insert(std::string(n.substr(6)));
   }
   // A prefixed root (<svg:svg xmlns:svg="...">) is SVG even when the default namespace is not.
-  int index = 0;
-  std::vector<std::pair<pugi::xml_node, int>> stack{{root, 1}};
-  while (!stack.empty()) {
-    const auto [node, depth] = stack.back();
-    stack.pop_back();
+  int depth = 1;
+  for (pugi::xml_node node = root; node; node = next_element(node, root, depth)) {
     if (depth > options_.max_depth)
       fail(node, "elements nested deeper than " + std::to_string(options_.max_depth) + " levels");
-    element_index_[node.internal_object()] = index++;
     if (const char* id = node.attribute("id").value(); *id) ids_.emplace(id, node);  // first id wins
     if (local_name(node) == "style") {
       std::string css;
@@ -292,12 +324,16 @@ void Reader::index_document(pugi::xml_node root) {
         fail(node, e.message());
       }
     }
-    // Push children in reverse so they are visited in document order.
-    std::vector<pugi::xml_node> children;
-    for (const pugi::xml_node child : node.children(/*any*/))
-      if (child.type() == pugi::node_element) children.push_back(child);
-    for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back({*it, depth + 1});
   }
+}
+
+// Each source's position in document order, counting every element: found once the drawing is
+// walked, for the few elements that draw, rather than kept for all.
+void Reader::number_sources(pugi::xml_node root) {
+  int index = 0, depth = 1;
+  for (pugi::xml_node node = root; node; node = next_element(node, root, depth), ++index)
+    if (const auto it = source_index_.find(node.internal_object()); it != source_index_.end())
+      soup_.sources[it->second].index = index;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -549,7 +585,7 @@ void Reader::walk_use(pugi::xml_node node, Context ctx) {
     warn_once("external-use", "<use> of another file ('" + ref + "') is not followed");
     return;
   }
-  const auto it = ids_.find(ref.substr(1));
+  const auto it = ids_.find(std::string_view(ref).substr(1));
   if (it == ids_.end()) {
     warn_once("missing-use:" + ref, "<use> refers to a missing element '" + ref + "'");
     return;
@@ -603,7 +639,7 @@ int Reader::source_of(pugi::xml_node node, std::string_view tag) {
     SourceElement s;
     s.tag = std::string(tag);
     s.id = node.attribute("id").value();
-    s.index = element_index_.count(node.internal_object()) ? element_index_.at(node.internal_object()) : -1;
+    s.index = -1;  // number_sources sets it
     s.line = line_of(node);
     soup_.sources.push_back(std::move(s));
   }
@@ -670,7 +706,7 @@ void Reader::emit(pugi::xml_node node, std::string_view tag, const std::vector<S
   const int source = source_of(node, tag);
   Paint fill = ctx.fill;
   // A paint server that is not in the document paints nothing (there is no fallback colour here).
-  if (fill.kind == Paint::Kind::url && !ids_.count(fill.url)) fill = Paint{};
+  if (fill.kind == Paint::Kind::url && !ids_.count(std::string_view(fill.url))) fill = Paint{};
   FillLayer* layer = nullptr;
   if (fill.kind != Paint::Kind::none) {
     soup_.fills.push_back({source, fill, ctx.fill_rule, {}, {}});
@@ -748,6 +784,7 @@ FeatureSoup Reader::read() {
     ctx.depth = 1;
     walk_children(root, ctx);
   }
+  number_sources(root);
 
   for (const auto& [kind, count] : skipped_kinds_)
     soup_.warnings.push_back("skipped " + std::to_string(count) + " <" + kind + "> element" +

@@ -213,3 +213,17 @@ TEST(HostileSvg, LimitsNameTheirOptions) {
       HasSubstr("the document has more than 100 elements, each <use> instance counted (--max-elements "
                 "raises the limit)"));
 }
+
+// Lines are counted from a sparse index (a file of empty lines would take 8 bytes a line), and
+// elements numbered by walking the tree in place (a document of many elements took as many
+// entries in a table): both as before.
+TEST(HostileSvg, LinesAndDocumentOrderFoundWithoutTablesPerLineOrElement) {
+  for (const int blank : {0, 1, 1022, 1023, 1024, 5000}) {
+    const std::string text = kOpen + std::string(blank, '\n') + "<path id=\"x\" d=\"M0 0 X\"/></svg>";
+    EXPECT_THAT(error_of(text), HasSubstr("line " + std::to_string(blank + 1) + ", <path id=\"x\">")) << blank;
+  }
+  const FeatureSoup s = read_svg(doc("<g><g><path d=\"M0 0 L1 1\"/></g><title/></g><path d=\"M0 0 L2 2\"/>"));
+  ASSERT_EQ(s.sources.size(), 2u);
+  EXPECT_EQ(s.sources[0].index, 3);  // svg, g, g, path
+  EXPECT_EQ(s.sources[1].index, 5);  // ..., title, path
+}
