@@ -14,6 +14,7 @@
 
 #include "base/files.hpp"
 #include "base/text.hpp"
+#include "svg/drawing_size.hpp"
 #include "svg/entities.hpp"
 #include "svg/error.hpp"
 #include "svg/numbers.hpp"
@@ -796,6 +797,8 @@ FeatureSoup Reader::read() {
     extent.add(sp.start);
     for (const CubicBezier& c : sp.segments) extent.add(c.control_bounds());
   }
+  // Outside this range lengths relative to the drawing's size overflow or underflow, here first.
+  if (const std::string problem = drawing_size_problem(extent); !problem.empty()) throw InputError(problem);
   const double tolerance = options_.degenerate_tolerance_rel * extent.diagonal();
   soup_.curves.reserve(curve_count_);
   for (PendingSubpath& sp : pending_) {

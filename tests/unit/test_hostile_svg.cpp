@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "base/text.hpp"
+#include "svg/drawing_size.hpp"
 #include "svg/error.hpp"
 #include "svg/reader.hpp"
 #include "svg/style.hpp"
@@ -226,4 +227,52 @@ TEST(HostileSvg, LinesAndDocumentOrderFoundWithoutTablesPerLineOrElement) {
   ASSERT_EQ(s.sources.size(), 2u);
   EXPECT_EQ(s.sources[0].index, 3);  // svg, g, g, path
   EXPECT_EQ(s.sources[1].index, 5);  // ..., title, path
+}
+
+TEST(HostileSvg, DrawingSizesOutsideTheRangeAreRefusedWithTheReason) {
+  const auto triangle = [](double s) {
+    const auto n = [](double v) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.17g", v);
+      return std::string(text);
+    };
+    return doc("<path d=\"M0 0 L" + n(s) + " 0 L" + n(s / 2) + " " + n(0.8 * s) + " Z\"/>");
+  };
+  // Once meshed wrong (not certified), or collapsed to a point, or refused as "1" across.
+  EXPECT_THAT(error_of(triangle(1e-160)),
+              HasSubstr("bad.svg: the drawing is 1.3e-160 across, smaller than 1e-100: "
+                        "too small to mesh in double precision; scale it up"));
+  EXPECT_THAT(error_of(triangle(1e-162)), HasSubstr("the drawing is 1.3e-162 across, smaller than 1e-100"));
+  EXPECT_THAT(error_of(triangle(1e200)),
+              HasSubstr("bad.svg: the drawing reaches a coordinate of 1e+200, beyond "
+                        "1e+100: too large to mesh in double precision; scale it down"));
+  EXPECT_THAT(error_of(triangle(0.9e100)), HasSubstr("the drawing is 1.2e+100 across, larger than 1e+100"));
+  // Inside the range: read, the triangle's three curves kept (none collapsed into a point).
+  for (const double s : {1e-100, 0.7e100}) {
+    const FeatureSoup soup = read_svg(triangle(s), options());
+    EXPECT_EQ(soup.curves.size(), 3u) << s;
+    EXPECT_TRUE(soup.points.empty()) << s;
+  }
+  // A point is 0 across, which is no size to be out of range.
+  EXPECT_EQ(read_svg(doc("<path d=\"M1e-200 0\"/>"), options()).points.size(), 1u);
+}
+
+TEST(HostileSvg, DrawingSizeProblem) {
+  curvemesh::geometry::Box2 box;
+  EXPECT_EQ(drawing_size_problem(box), "");  // empty
+  box.add({0, 0});
+  EXPECT_EQ(drawing_size_problem(box), "");  // a point
+  box.add({3e-101, 4e-101});
+  EXPECT_EQ(drawing_size_problem(box),
+            "the drawing is 5e-101 across, smaller than 1e-100: too small to mesh in "
+            "double precision; scale it up");
+  box.add({6e-101, 9e-101});
+  EXPECT_EQ(drawing_size_problem(box), "");  // 1.08e-100 across
+  // Sides that would overflow a plain diagonal, and coordinates within range but far apart.
+  curvemesh::geometry::Box2 wide;
+  wide.add({-1e100, 0});
+  wide.add({1e100, 0});
+  EXPECT_THAT(drawing_size_problem(wide), HasSubstr("the drawing is 2e+100 across, larger than 1e+100"));
+  wide.add({0, -1e300});
+  EXPECT_THAT(drawing_size_problem(wide), HasSubstr("reaches a coordinate of 1e+300, beyond 1e+100"));
 }
