@@ -104,7 +104,7 @@ EntityTable EntityTable::from_document(std::string_view text, std::size_t max_ex
   std::function<const std::string&(const std::string&)> resolve = [&](const std::string& name) -> const std::string& {
     if (const auto done = table.values_.find(name); done != table.values_.end()) return done->second;
     if (!active.insert(name).second)
-      throw InputError("entity '" + name + "' refers to itself", "DOCTYPE");
+      throw InputError("entity '" + base::repair_utf8(name) + "' refers to itself", "DOCTYPE");
     if (active.size() > 64) throw InputError("entities nested more than 64 deep", "DOCTYPE");
     const std::string& value = raw.at(name);
     std::string out;

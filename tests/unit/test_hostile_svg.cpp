@@ -113,6 +113,9 @@ TEST(HostileSvg, MessagesAreWellFormed) {
   const FeatureSoup s = read_svg(doc("<line x2=\"1\" transform=\"scale(\xe9)\"/>"), options());
   EXPECT_TRUE(has_warning(s, "ignored a malformed transform (expected a number, found '\xef\xbf\xbd')"))
       << testing::PrintToString(s.warnings);
+  // An entity's name, from the document type declaration, which pugixml does not read.
+  const std::string cycle = error_of("<!DOCTYPE svg [<!ENTITY a\xff \"&a\xff;\">]>" + doc(""));
+  EXPECT_THAT(cycle, HasSubstr("DOCTYPE: entity 'a\xef\xbf\xbd' refers to itself"));
   // A file's name is shown escaped.
   try {
     read_svg("<svg", options(), "a\xff.svg");
