@@ -130,6 +130,7 @@ class Reader {
   void walk_children(pugi::xml_node node, const Context& ctx);
   bool apply_style(pugi::xml_node node, std::string_view tag, Context& ctx);  // false: display:none
   bool apply_declaration(pugi::xml_node node, std::string_view name, std::string_view value, Context& ctx);
+  std::optional<Paint> paint(pugi::xml_node node, std::string_view value, const Context& ctx) const;
   void apply_side_colors(pugi::xml_node node, Context& ctx);
   void apply_transform(pugi::xml_node node, Context& ctx);
   void walk_use(pugi::xml_node node, Context ctx);
@@ -374,7 +375,7 @@ bool Reader::apply_style(pugi::xml_node node, std::string_view tag, Context& ctx
 bool Reader::apply_declaration(pugi::xml_node node, std::string_view name, std::string_view value,
                                Context& ctx) {
   if (name == "fill") {
-    if (auto p = parse_paint(value, ctx.color)) {
+    if (auto p = paint(node, value, ctx)) {
       ctx.fill = *p;
     } else if (trim_svg_whitespace(value) != "inherit") {
       // Not a paint we can read: leave the element unfilled rather than guess its colour.
@@ -390,7 +391,7 @@ bool Reader::apply_declaration(pugi::xml_node node, std::string_view name, std::
   } else if (name == "clip-path" || name == "mask") {
     if (trim_svg_whitespace(value) != "none") ++soup_.clipped_elements;
   } else if (name == "stroke") {
-    if (auto p = parse_paint(value, ctx.color)) ctx.stroke = *p;
+    if (auto p = paint(node, value, ctx)) ctx.stroke = *p;
   } else if (name == "display") {
     if (trim_svg_whitespace(value) == "none") return false;
   } else if (name == "visibility") {
@@ -399,6 +400,15 @@ bool Reader::apply_declaration(pugi::xml_node node, std::string_view name, std::
     if (v == "visible") ctx.visible = true;
   }
   return true;
+}
+
+// parse_paint, refusing a reference too long to be copied onto every curve the element draws.
+std::optional<Paint> Reader::paint(pugi::xml_node node, std::string_view value, const Context& ctx) const {
+  std::optional<Paint> p = parse_paint(value, ctx.color);
+  if (p && p->kind == Paint::Kind::url && p->url.size() > kMaxPaintReference)
+    fail(node, "a paint refers to an id of more than " + std::to_string(kMaxPaintReference) +
+                   " characters (a limit of the reader)");
+  return p;
 }
 
 // The two colours of a diffusion curve are data attributes, not CSS properties: no style sheet or

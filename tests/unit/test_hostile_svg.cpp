@@ -11,6 +11,7 @@
 #include "base/text.hpp"
 #include "svg/drawing_size.hpp"
 #include "svg/error.hpp"
+#include "svg/paint.hpp"
 #include "svg/reader.hpp"
 #include "svg/style.hpp"
 
@@ -216,6 +217,22 @@ TEST(HostileSvg, LimitsNameTheirOptions) {
       error_of(doc(body), o),
       HasSubstr("the document has more than 100 elements, each <use> instance counted (--max-elements "
                 "raises the limit)"));
+}
+
+TEST(HostileSvg, PaintReferencesAreBounded) {
+  // Each curve keeps its element's paints: 100,000 segments stroked with a reference to an id of
+  // 10,000 characters took 1 GB.
+  std::string path = "M0 0";
+  for (int i = 0; i < 1000; ++i) path += " l1 1";
+  const std::string id(kMaxPaintReference, 'a');
+  EXPECT_THAT(
+      error_of(doc("<path d=\"" + path + "\" stroke=\"url(#" + id + "b)\"/>")),
+      HasSubstr("<path>: a paint refers to an id of more than 256 characters (a limit of the reader)"));
+  EXPECT_THAT(error_of(doc("<style>path{fill:url(#" + id + "b)}</style><path d=\"M0 0 L1 1\"/>")),
+              HasSubstr("a paint refers to an id of more than 256 characters"));
+  const FeatureSoup s = read_svg(doc("<path d=\"" + path + "\" stroke=\"url(#" + id + ")\"/>"), options());
+  ASSERT_EQ(s.curves.size(), 1000u);
+  EXPECT_EQ(s.curves[0].stroke.url, id);
 }
 
 // Lines are counted from a sparse index (a file of empty lines would take 8 bytes a line), and
