@@ -117,7 +117,8 @@ class Reader {
   void index_document(pugi::xml_node root);
   void number_sources(pugi::xml_node root);
   std::string_view local_name(pugi::xml_node node) const;  // "" for elements of other namespaces
-  std::string attr(pugi::xml_node node, const char* name) const;
+  std::string_view text_of(pugi::xml_node node, const char* name) const;
+  std::string attr(pugi::xml_node node, const char* name) const { return std::string(text_of(node, name)); }
   bool has_attr(pugi::xml_node node, const char* name) const { return !node.attribute(name).empty(); }
   std::string href(pugi::xml_node node) const;
   int line_of(pugi::xml_node node) const;
@@ -157,6 +158,7 @@ class Reader {
   std::unordered_map<std::string_view, pugi::xml_node> ids_;
   std::unordered_map<const void*, int> source_index_;
   std::unordered_map<const void*, int> renamed_lines_;  // elements whose name was repaired
+  mutable std::size_t attribute_text_ = 0;              // characters read by text_of so far
   std::unordered_set<std::string> svg_prefixes_;  // namespace prefixes bound to SVG ("svg" usually)
   bool default_namespace_is_svg_ = true;
   StyleSheet stylesheet_;
@@ -195,8 +197,16 @@ std::string_view Reader::local_name(pugi::xml_node node) const {
   return {};
 }
 
-std::string Reader::attr(pugi::xml_node node, const char* name) const {
-  return node.attribute(name).value();
+// The value of an attribute that is read (parsed or matched), counted against
+// options_.max_attribute_text: an element drawn through many <use> is read as many times, and a
+// long attribute so multiplied would keep the reader busy for hours.
+std::string_view Reader::text_of(pugi::xml_node node, const char* name) const {
+  const std::string_view value = node.attribute(name).value();
+  attribute_text_ += value.size();
+  if (attribute_text_ > options_.max_attribute_text)
+    fail(node, "the attributes read amount to more than " + std::to_string(options_.max_attribute_text) +
+                   " characters, each <use> instance reading its element's again (a limit of the reader)");
+  return value;
 }
 
 std::string Reader::href(pugi::xml_node node) const {
@@ -347,18 +357,18 @@ bool Reader::apply_style(pugi::xml_node node, std::string_view tag, Context& ctx
   std::vector<const Declarations*> sheet;
   if (!stylesheet_.empty()) {
     try {
-      stylesheet_.match(tag, node.attribute("id").value(), node.attribute("class").value(), sheet);
+      stylesheet_.match(tag, text_of(node, "id"), text_of(node, "class"), sheet);
     } catch (const InputError& e) {
       fail(node, e.message());
     }
   }
   const auto visit = [&](const std::function<bool(std::string_view, std::string_view)>& f) {
     for (const char* p : kStyleProperties)
-      if (has_attr(node, p) && !f(p, node.attribute(p).value())) return false;
+      if (has_attr(node, p) && !f(p, text_of(node, p))) return false;
     for (const Declarations* block : sheet)
       for (const auto& [name, value] : *block)
         if (!f(name, value)) return false;
-    return for_each_declaration(node.attribute("style").value(), f);
+    return for_each_declaration(text_of(node, "style"), f);
   };
   // `color` first: currentColor in fill/stroke refers to this element's computed colour.
   visit([&](std::string_view name, std::string_view value) {
