@@ -71,7 +71,8 @@ CheckReport check_file(const std::string& msh_path) {
   return api::translate_errors([&] {
     io::HighOrderMesh m;
     try {
-      m = io::read_msh(msh_path);
+      m = io::read_msh(msh_path, static_cast<std::uint64_t>(io::kDefaultMaxMshMb * 1048576.0),
+                       "`curvemesh check --max-input-mb`");
     } catch (const io::MshError& e) {
       throw Error(Error::Kind::invalid_input, e.what());  // the message starts with the path
     }

@@ -4,6 +4,7 @@
 // distance from a primary feature edge to the nearest input curve is measured too. The
 // certification itself is the pipeline's (pipeline/check.hpp), shared with the public API.
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -21,12 +22,16 @@ namespace {
 struct CheckArgs {
   std::string input, svg;
   bool json = false;
+  double max_input_mb = io::kDefaultMaxMshMb;
 };
 
 int run_check(const CheckArgs& args) {
   io::HighOrderMesh m;
   try {
-    m = io::read_msh(args.input);
+    m = io::read_msh(args.input, static_cast<std::uint64_t>(args.max_input_mb * 1048576.0), "--max-input-mb");
+  } catch (const io::MshError& e) {
+    std::cerr << "curvemesh: " << e.what() << "\n";  // it starts with the path
+    return kInvalidInput;
   } catch (const std::exception& e) {
     std::cerr << "curvemesh: " << args.input << ": " << e.what() << "\n";
     return kInvalidInput;
@@ -79,6 +84,11 @@ Runner add_check_command(CLI::App& app) {
   cmd->add_option("--svg", args->svg,
                   "the SVG drawing the mesh was made from: measure primary edges against its curves");
   cmd->add_flag("--json", args->json, "print one JSON object");
+  cmd->add_option("--max-input-mb", args->max_input_mb,
+                  "refuse a .msh file larger than this many MiB (a cubic mesh of two million triangles "
+                  "is about 500)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   return [args] { return run_check(*args); };
 }
 

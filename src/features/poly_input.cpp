@@ -1,50 +1,57 @@
 #include "features/poly_input.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <set>
-#include <sstream>
+#include <string_view>
 #include <utility>
 
+#include "base/files.hpp"
+#include "base/text.hpp"
 #include "svg/error.hpp"
 
 namespace curvemesh::features {
 
 namespace {
 
-// The file as records: one per non-blank line, '#' to the end of the line ignored.
+// The file as records: one per non-blank line, '#' to the end of the line ignored. Split into
+// words one at a time, as they are read: a file of many short lines would take many times its
+// size as strings.
 class Records {
  public:
-  Records(const std::string& path, std::istream& in) : path_(path) {
-    std::string line;
-    for (int n = 1; std::getline(in, line); ++n) {
-      line = line.substr(0, line.find('#'));
-      std::istringstream words(line);
-      std::vector<std::string> tokens;
-      for (std::string w; words >> w;) tokens.push_back(w);
-      if (!tokens.empty()) records_.push_back({n, std::move(tokens)});
+  Records(const std::string& path, std::string text) : path_(path), text_(std::move(text)) {
+    int n = 1;
+    for (std::size_t at = 0; at < text_.size(); ++n) {
+      const std::string_view line = line_at(at);
+      if (std::any_of(line.begin(), line.end(), [](unsigned char c) { return !std::isspace(c); }))
+        ++total_, last_line_ = n;
     }
-    last_line_ = records_.empty() ? 1 : records_.back().first;
   }
 
-  bool done() const { return next_ >= records_.size(); }
-  std::size_t remaining() const { return records_.size() - next_; }
+  bool done() const { return next_ >= total_; }
+  std::size_t remaining() const { return total_ - next_; }
 
   // The next record, which must have at least `min_tokens` tokens.
   const std::vector<std::string>& next(std::size_t min_tokens, const char* what) {
     if (done()) fail(last_line_, std::string("file ends before ") + what);
-    line_ = records_[next_].first;
-    const auto& r = records_[next_++].second;
-    if (r.size() < min_tokens) fail(line_, std::string("too few numbers for ") + what);
-    return r;
+    do {
+      ++line_number_;
+      tokens_.clear();
+      for (const std::string_view w : words_of(line_at(at_))) tokens_.emplace_back(w);
+    } while (tokens_.empty());
+    ++next_;
+    line_ = line_number_;
+    if (tokens_.size() < min_tokens) fail(line_, std::string("too few numbers for ") + what);
+    return tokens_;
   }
 
   long integer(const std::string& token, const char* what) const {
     long v = 0;
     const auto r = std::from_chars(token.data(), token.data() + token.size(), v);
-    if (r.ec != std::errc() || r.ptr != token.data() + token.size()) fail(line_, std::string("expected an integer ") + what + ", found \"" + token + "\"");
+    if (r.ec != std::errc() || r.ptr != token.data() + token.size())
+      fail(line_, std::string("expected an integer ") + what + ", found \"" + base::printable(token) + "\"");
     return v;
   }
 
@@ -52,30 +59,58 @@ class Records {
     double v = 0;
     const auto r = std::from_chars(token.data(), token.data() + token.size(), v);
     if (r.ec == std::errc::result_out_of_range || (r.ec == std::errc() && !std::isfinite(v)))
-      fail(line_, std::string("the ") + what + " \"" + token + "\" is not a finite number");
+      fail(line_, std::string("the ") + what + " \"" + base::printable(token) + "\" is not a finite number");
     if (r.ec != std::errc() || r.ptr != token.data() + token.size())
-      fail(line_, std::string("expected a number for the ") + what + ", found \"" + token + "\"");
+      fail(line_,
+           std::string("expected a number for the ") + what + ", found \"" + base::printable(token) + "\"");
     return v;
   }
 
   [[noreturn]] void fail(const std::string& message) const { fail(line_, message); }
   [[noreturn]] void fail(int line, const std::string& message) const {
-    throw svg::InputError(message, path_ + ":" + std::to_string(line));
+    throw svg::InputError(message, base::printable(path_) + ":" + std::to_string(line));
   }
 
  private:
+  // The line starting at `at` without its comment; `at` moves past it.
+  std::string_view line_at(std::size_t& at) const {
+    const std::size_t end = std::min(text_.find('\n', at), text_.size());
+    std::string_view line = std::string_view(text_).substr(at, end - at);
+    at = end + 1;
+    return line.substr(0, line.find('#'));
+  }
+  static std::vector<std::string_view> words_of(std::string_view line) {
+    std::vector<std::string_view> words;
+    for (std::size_t i = 0; i < line.size();) {
+      while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+      std::size_t j = i;
+      while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+      if (j > i) words.push_back(line.substr(i, j - i));
+      i = j;
+    }
+    return words;
+  }
+
   std::string path_;
-  std::vector<std::pair<int, std::vector<std::string>>> records_;
-  std::size_t next_ = 0;
+  std::string text_;
+  std::size_t at_ = 0;  // where the next line starts
+  std::size_t total_ = 0, next_ = 0;
+  std::vector<std::string> tokens_;
+  int line_number_ = 0;  // of the line read last
   int line_ = 1, last_line_ = 1;
 };
 
 }  // namespace
 
-Features read_poly(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw svg::InputError("cannot open the file", path);
-  Records r(path, in);
+Features read_poly(const std::string& path, const Limits& limits) {
+  std::string text;
+  try {
+    text = base::read_input_file(path, static_cast<std::uint64_t>(limits.max_input_mb * 1048576.0),
+                                 "--max-input-mb");
+  } catch (const base::InputFileError& e) {
+    throw svg::input_error(e, path);
+  }
+  Records r(path, std::move(text));
 
   const auto& header = r.next(2, "the vertex count");
   const long nv = r.integer(header[0], "vertex count");
@@ -103,6 +138,10 @@ Features read_poly(const std::string& path) {
   const auto& sh = r.next(1, "the segment count");
   const long ns = r.integer(sh[0], "segment count");
   if (ns < 0) r.fail("negative segment count");
+  // Each segment is a curve of the drawing, as an SVG path's are.
+  if (static_cast<unsigned long>(ns) > limits.max_curves)
+    r.fail("the file has more than " + std::to_string(limits.max_curves) +
+           " segments (--max-curves raises the limit)");
   if (std::size_t(ns) > r.remaining()) r.fail("the file has fewer lines than the " + std::to_string(ns) + " segments announced");
   Features f;
   std::set<std::pair<long, long>> seen;

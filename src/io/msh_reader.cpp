@@ -4,13 +4,13 @@
 #include <charconv>
 #include <climits>
 #include <cmath>
-#include <fstream>
 #include <iterator>
 #include <map>
 #include <optional>
-#include <sstream>
 #include <unordered_map>
 #include <vector>
+
+#include "base/files.hpp"
 
 namespace curvemesh::io {
 
@@ -388,14 +388,15 @@ HighOrderMesh parse_msh(std::string_view text) {
   return Reader(text).read();
 }
 
-HighOrderMesh read_msh(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw MshError(path + ": cannot be read");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw MshError(path + ": cannot be read");
+HighOrderMesh read_msh(const std::string& path, std::uint64_t max_bytes, const std::string& limit_option) {
+  std::string text;
   try {
-    return parse_msh(buffer.str());
+    text = base::read_input_file(path, max_bytes, limit_option);
+  } catch (const base::InputFileError& e) {
+    throw MshError(e.what());  // it starts with the path
+  }
+  try {
+    return parse_msh(text);
   } catch (const MshError& e) {
     throw MshError(path + ": " + e.what());
   }

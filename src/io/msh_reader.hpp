@@ -5,6 +5,7 @@
 // $Elements are ignored. Node tags may be any positive integers; nodes keep the order of the
 // file, elements too. An element takes the first physical tag of its entity (4.1) or its first
 // tag (2.2); 0 when it has none.
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -21,8 +22,14 @@ class MshError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// What `curvemesh check` reads at most by default, in MiB: a cubic mesh of two million triangles
+// (the default limit on triangles) takes about 0.5 GiB as .msh.
+inline constexpr double kDefaultMaxMshMb = 2048;
+
 HighOrderMesh parse_msh(std::string_view text);
-// As parse_msh; the message starts with the path. Also throws MshError if the file cannot be read.
-HighOrderMesh read_msh(const std::string& path);
+// As parse_msh; the message starts with the path. Also throws MshError if the file cannot be read,
+// is not a regular file (a FIFO or a device is refused without waiting on it) or is larger than
+// `max_bytes` (the message names `limit_option`, what raises the limit).
+HighOrderMesh read_msh(const std::string& path, std::uint64_t max_bytes, const std::string& limit_option);
 
 }  // namespace curvemesh::io

@@ -10,6 +10,7 @@
 #include "base/limits.hpp"
 #include "features/poly_input.hpp"
 #include "io/curved_mesh.hpp"
+#include "svg/drawing_size.hpp"
 #include "svg/error.hpp"
 #include "svg/reader.hpp"
 #include "triangulate/invariant_inputs.hpp"
@@ -106,14 +107,14 @@ const svg::FeatureSoup& finite_soup(const svg::FeatureSoup& soup, const std::str
   return soup;
 }
 
-// Coordinates near the top of the doubles' range (1e200) would make every length infinite; and
-// a drawing small beside its distance from the origin has too few bits of its coordinates left
-// to mesh (doubles near 1e15 are 0.125 apart: a drawing 1 wide there has three bits). The doubles
-// where it lies must be at most 2^-30 of its size apart (as resolve() takes it).
+// A drawing too small or too large for doubles (svg/drawing_size.hpp), or small beside its
+// distance from the origin, which leaves too few bits of its coordinates to mesh (doubles near
+// 1e15 are 0.125 apart: a drawing 1 wide there has three bits). The doubles where it lies must be
+// at most 2^-30 of its size apart (as resolve() takes it).
 double finite_diagonal(const geometry::Box2& box, const std::string& name) {
-  const double d = box.diagonal();
-  if (!std::isfinite(d))
-    throw invalid(name + ": coordinates too large: the drawing's diagonal overflows a double");
+  if (const std::string problem = svg::drawing_size_problem(box); !problem.empty())
+    throw invalid(name + ": " + problem);
+  const double d = box.diagonal();  // within the range checked: no overflow or underflow
   if (!box.empty()) {
     const double far = std::max({std::abs(box.min.x()), std::abs(box.min.y()), std::abs(box.max.x()),
                                  std::abs(box.max.y())});
@@ -263,7 +264,7 @@ Result run_stages(const Source& source, const Parameters& parameters, const RunO
   // Read, and (unless stopping there) find the features.
   try {
     if (source.kind == Source::Kind::file && ends_with(source.path, ".poly")) {
-      r.features = features::read_poly(source.path);
+      r.features = features::read_poly(source.path, parameters.limits);
       r.resolved = resolve(parameters, finite_diagonal(r.features.box, source.name));
       r.features.lengths = r.resolved.features;
       stats["seconds"]["read"] = seconds_since(t);

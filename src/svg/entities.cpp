@@ -1,8 +1,10 @@
 #include "svg/entities.hpp"
 
 #include <functional>
+#include <optional>
 #include <set>
 
+#include "base/text.hpp"
 #include "svg/error.hpp"
 #include "svg/numbers.hpp"
 
@@ -57,6 +59,16 @@ bool is_name_char(char c) {
          static_cast<unsigned char>(c) >= 0x80;
 }
 
+// The name in a reference "&name;" starting at value[k] (a '&'), or nothing. Declared names are
+// made of name characters, so the search stops at the first other one: a value of many '&' and
+// no ';' is read in linear time.
+std::optional<std::string_view> reference_at(std::string_view value, std::size_t k) {
+  std::size_t j = k + 1;
+  while (j < value.size() && is_name_char(value[j])) ++j;
+  if (j >= value.size() || value[j] != ';') return std::nullopt;
+  return value.substr(k + 1, j - k - 1);
+}
+
 }  // namespace
 
 EntityTable EntityTable::from_document(std::string_view text, std::size_t max_expansion) {
@@ -82,7 +94,7 @@ EntityTable EntityTable::from_document(std::string_view text, std::size_t max_ex
       raw.emplace(std::move(name), std::string(subset.substr(i + 1, end - i - 1)));
       i = end + 1;
     } else {
-      table.external_.push_back(std::move(name));
+      table.external_.push_back(base::repair_utf8(name));
     }
   }
 
@@ -92,52 +104,48 @@ EntityTable EntityTable::from_document(std::string_view text, std::size_t max_ex
   std::function<const std::string&(const std::string&)> resolve = [&](const std::string& name) -> const std::string& {
     if (const auto done = table.values_.find(name); done != table.values_.end()) return done->second;
     if (!active.insert(name).second)
-      throw InputError("entity '" + name + "' refers to itself", "DOCTYPE");
+      throw InputError("entity '" + base::repair_utf8(name) + "' refers to itself", "DOCTYPE");
     if (active.size() > 64) throw InputError("entities nested more than 64 deep", "DOCTYPE");
     const std::string& value = raw.at(name);
     std::string out;
     for (std::size_t k = 0; k < value.size(); ++k) {
       if (value[k] == '&') {
-        const auto semi = value.find(';', k + 1);
-        if (semi != std::string::npos) {
-          const std::string ref = value.substr(k + 1, semi - k - 1);
-          if (raw.count(ref)) {
-            out += resolve(ref);
-            k = semi;
-            if (out.size() > max_expansion) break;
-            continue;
-          }
+        if (const auto ref = reference_at(value, k); ref && raw.count(*ref)) {
+          out += resolve(std::string(*ref));
+          k += ref->size() + 1;
+          if (total + out.size() > max_expansion) break;
+          continue;
         }
       }
       out += value[k];
     }
     total += out.size();
-    if (total > max_expansion)
-      throw InputError("entity declarations expand to more than " + std::to_string(max_expansion) +
-                           " characters (an entity expansion attack?)",
-                       "DOCTYPE");
+    if (total > max_expansion) throw InputError(entity_budget_message(max_expansion), "DOCTYPE");
     active.erase(name);
     return table.values_.emplace(name, std::move(out)).first->second;
   };
   for (const auto& [name, value] : raw) resolve(name);
+  table.expanded_ = total;
   return table;
 }
 
-std::string EntityTable::expand(std::string_view value) const {
+std::string entity_budget_message(std::size_t max_expansion) {
+  return "entity references expand to more than " + std::to_string(max_expansion) +
+         " characters in all (a limit of the reader)";
+}
+
+std::string EntityTable::expand(std::string_view value) {
   std::string out;
   out.reserve(value.size());
   for (std::size_t k = 0; k < value.size(); ++k) {
     if (value[k] == '&') {
-      const auto semi = value.find(';', k + 1);
-      if (semi != std::string_view::npos) {
-        if (const auto it = values_.find(value.substr(k + 1, semi - k - 1)); it != values_.end()) {
-          out += it->second;
-          if (out.size() > max_expansion_)
-            throw InputError("an attribute expands to more than " + std::to_string(max_expansion_) +
-                             " characters through entities");
-          k = semi;
-          continue;
-        }
+      const auto ref = reference_at(value, k);
+      if (const auto it = ref ? values_.find(*ref) : values_.end(); it != values_.end()) {
+        expanded_ += it->second.size();
+        if (expanded_ > max_expansion_) throw InputError(entity_budget_message(max_expansion_));
+        out += it->second;
+        k += ref->size() + 1;
+        continue;
       }
     }
     out += value[k];

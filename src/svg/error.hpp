@@ -2,6 +2,10 @@
 // Input errors: a drawing we refuse to read. Carries what a user needs to find the problem.
 #include <stdexcept>
 #include <string>
+#include <string_view>
+
+#include "base/files.hpp"
+#include "base/text.hpp"
 
 namespace curvemesh::svg {
 
@@ -17,6 +21,14 @@ class InputError : public std::runtime_error {
   std::string message_;
   std::string where_;
 };
+
+// An input file that could not be read (base::read_input_file) as an InputError: where() is the
+// path (as it may be printed), the message what follows it.
+inline InputError input_error(const base::InputFileError& e, const std::string& path) {
+  std::string_view message = e.what();
+  if (message.starts_with(path + ": ")) message.remove_prefix(path.size() + 2);
+  return InputError(std::string(message), base::printable(path));
+}
 
 // A syntax error inside an attribute value (path data, transform, points, ...), at `offset`
 // characters into the value. The reader turns it into an InputError naming the element.

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include "base/text.hpp"
+
 namespace curvemesh::svg {
 
 bool is_svg_whitespace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f'; }
@@ -13,6 +15,13 @@ std::string_view trim_svg_whitespace(std::string_view s) {
   while (!s.empty() && is_svg_whitespace(s.front())) s.remove_prefix(1);
   while (!s.empty() && is_svg_whitespace(s.back())) s.remove_suffix(1);
   return s;
+}
+
+std::string NumberScanner::shown_next() const {
+  if (at_end()) return {};
+  const auto lead = static_cast<unsigned char>(s_[pos_]);
+  const std::size_t n = lead < 0xc0 ? 1 : lead < 0xe0 ? 2 : lead < 0xf0 ? 3 : 4;
+  return base::printable(s_.substr(pos_, n));
 }
 
 void NumberScanner::skip_whitespace() {
@@ -115,7 +124,7 @@ double NumberScanner::number() {
   if (auto v = try_number()) return *v;
   if (names_non_finite(s_.substr(pos_))) throw SyntaxError("not a finite number", pos_, true);
   if (at_end()) throw SyntaxError("expected a number, found the end", pos_);
-  throw SyntaxError(std::string("expected a number, found '") + s_[pos_] + "'", pos_);
+  throw SyntaxError("expected a number, found '" + shown_next() + "'", pos_);
 }
 
 bool NumberScanner::flag() {

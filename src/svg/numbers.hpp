@@ -4,6 +4,7 @@
 // separated by whitespace and at most one comma. "-1-2" is two numbers, ".5.5" is two numbers,
 // "1e-5" is one. No "nan", "inf" or hex forms; values that overflow a double are errors.
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "svg/error.hpp"
@@ -18,6 +19,9 @@ class NumberScanner {
   std::size_t position() const { return pos_; }
   char peek() const { return at_end() ? '\0' : s_[pos_]; }
   void advance() { ++pos_; }
+  // The character at the position as a message may quote it: the whole UTF-8 sequence (a byte
+  // alone would cut a character in two), escaped if it is a control character or malformed.
+  std::string shown_next() const;
 
   void skip_whitespace();
   // Skips whitespace, then at most one comma and more whitespace.

@@ -22,7 +22,7 @@ bool is_command(char c) {
 
 class PathParser {
  public:
-  explicit PathParser(std::string_view d) : in_(d) {}
+  PathParser(std::string_view d, std::size_t max_pieces) : in_(d), max_pieces_(max_pieces) {}
 
   // After a failed parse: whether the data ran out (rather than holding something malformed),
   // and what was complete before that.
@@ -46,7 +46,7 @@ class PathParser {
         command = c;
         in_.advance();
       } else if (!in_.number_follows() || command == 'Z' || command == 'z') {
-        const std::string shown = (c >= 32 && c < 127) ? std::string(1, c) : "\\x" + std::to_string(int(c) & 0xff);
+        const std::string shown = in_.shown_next();
         throw SyntaxError(is_command_like(c) ? "unknown path command '" + shown + "'"
                                               : "unexpected '" + shown + "' in path data",
                           in_.position());
@@ -78,13 +78,22 @@ class PathParser {
     if (out_.empty() || out_.back().closed) {
       Subpath sp;
       sp.start = start_;
-      out_.push_back(sp);
+      new_subpath(sp);
     }
     return out_.back();
   }
   void add(const CubicBezier& c) {
-    open_subpath().segments.push_back(c);
+    Subpath& sp = open_subpath();
+    if (!sp.segments.empty()) count_piece();  // a subpath's first segment takes its place
+    sp.segments.push_back(c);
     current_ = c.p[3];
+  }
+  void new_subpath(const Subpath& sp) {
+    count_piece();
+    out_.push_back(sp);
+  }
+  void count_piece() {
+    if (++pieces_ > max_pieces_) throw TooManyPieces();
   }
 
   // One command with one set of arguments; returns after the arguments of one repetition.
@@ -98,7 +107,7 @@ class PathParser {
         start_ = current_;
         Subpath sp;
         sp.start = current_;
-        out_.push_back(sp);
+        new_subpath(sp);
         break;
       }
       case 'Z': {
@@ -169,6 +178,8 @@ class PathParser {
   }
 
   NumberScanner in_;
+  std::size_t max_pieces_;
+  std::size_t pieces_ = 0;  // segments, and subpaths without one
   std::vector<Subpath> out_;
   Vec2 current_ = Vec2::Zero();
   Vec2 start_ = Vec2::Zero();
@@ -178,8 +189,8 @@ class PathParser {
 
 }  // namespace
 
-std::vector<Subpath> parse_path_data(std::string_view d, bool* truncated) {
-  PathParser parser(d);
+std::vector<Subpath> parse_path_data(std::string_view d, bool* truncated, std::size_t max_pieces) {
+  PathParser parser(d, max_pieces);
   if (truncated) *truncated = false;
   try {
     return parser.parse();

@@ -1,6 +1,9 @@
 #pragma once
 // SVG path data (the `d` attribute) to cubic Béziers, in the element's own coordinates.
 // Every command M L H V C S Q T A Z, absolute and relative, with implicit repeats.
+#include <cstddef>
+#include <limits>
+#include <stdexcept>
 #include <string_view>
 #include <vector>
 
@@ -21,6 +24,16 @@ struct Subpath {
 // Data that simply ends in the middle of a command's arguments ("M 0 0 L 5") is what some
 // editors write; browsers draw it up to the incomplete command (SVG 2 §9.5.4). With `truncated`
 // given, so do we and set *truncated; without it, that is a SyntaxError too.
-std::vector<Subpath> parse_path_data(std::string_view d, bool* truncated = nullptr);
+//
+// `max_pieces` bounds what is parsed, counting each segment and each subpath without one (a
+// moveto alone): past it, throws TooManyPieces, before more memory is taken.
+std::vector<Subpath> parse_path_data(std::string_view d, bool* truncated = nullptr,
+                                     std::size_t max_pieces = std::numeric_limits<std::size_t>::max());
+
+// Path data or a points list holding more pieces than the caller allows.
+class TooManyPieces : public std::runtime_error {
+ public:
+  TooManyPieces() : std::runtime_error("more pieces than allowed") {}
+};
 
 }  // namespace curvemesh::svg

@@ -3,17 +3,18 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
+#include <functional>
 #include <map>
 #include <numbers>
 #include <optional>
 #include <pugixml.hpp>
-#include <sstream>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
 
+#include "base/files.hpp"
+#include "base/text.hpp"
+#include "svg/drawing_size.hpp"
 #include "svg/entities.hpp"
 #include "svg/error.hpp"
 #include "svg/numbers.hpp"
@@ -42,6 +43,53 @@ struct Context {
   int depth = 0;
 };
 
+// Bytes of malformed UTF-8 replaced so far, and the line of the first.
+struct TextRepairs {
+  std::size_t bytes = 0;
+  int first_line = 0;
+};
+
+// The lines of a text, found from offsets: the newlines counted before every block of 1 KiB (a
+// line start for each newline would take 8 bytes for every byte of a file of empty lines).
+class LineIndex {
+ public:
+  explicit LineIndex(std::string_view text) : text_(text) {
+    std::size_t count = 0;
+    for (std::size_t b = 0; b < text.size(); b += kBlock) {
+      before_.push_back(count);
+      count += std::count(text.begin() + b, text.begin() + std::min(b + kBlock, text.size()), '\n');
+    }
+    before_.push_back(count);
+  }
+  // The 1-based line of the byte at `offset` (the last line past the end).
+  int line_of(std::size_t offset) const {
+    offset = std::min(offset, text_.size());
+    const std::size_t block = offset / kBlock;
+    const auto from = text_.begin() + block * kBlock;
+    return static_cast<int>(1 + before_[block] + std::count(from, text_.begin() + offset, '\n'));
+  }
+
+ private:
+  static constexpr std::size_t kBlock = 1024;
+  std::string_view text_;
+  std::vector<std::size_t> before_;  // newlines before each block, and in all
+};
+
+// The element after `node` in document order below `root` (its descendants first), `depth`
+// following it; nothing after the last. Walks the tree in place: a document of many elements,
+// or of deep ones, takes no memory to go through.
+pugi::xml_node next_element(pugi::xml_node node, pugi::xml_node root, int& depth) {
+  for (pugi::xml_node child = node.first_child(); child; child = child.next_sibling())
+    if (child.type() == pugi::node_element) {
+      ++depth;
+      return child;
+    }
+  for (; node != root; node = node.parent(), --depth)
+    for (pugi::xml_node sibling = node.next_sibling(); sibling; sibling = sibling.next_sibling())
+      if (sibling.type() == pugi::node_element) return sibling;
+  return {};
+}
+
 // Which axis a length is measured along (for percentages, SVG 1.1 §7.10).
 enum class Axis { x, y, other };
 
@@ -56,26 +104,34 @@ struct PendingSubpath {
 
 class Reader {
  public:
-  Reader(std::string_view text, const ReadOptions& options) : text_(text), options_(options) {}
+  Reader(std::string_view text, const ReadOptions& options) : text_(text), options_(options), lines_(text) {}
 
   FeatureSoup read();
 
  private:
   // --- document structure ---
   void parse_document();
+  void prepare_tree();
+  void prepare_node(pugi::xml_node node, TextRepairs& repairs);
+  std::optional<std::string> repaired(std::string_view s, pugi::xml_node node, TextRepairs& repairs);
   void index_document(pugi::xml_node root);
+  void number_sources(pugi::xml_node root);
   std::string_view local_name(pugi::xml_node node) const;  // "" for elements of other namespaces
-  std::string attr(pugi::xml_node node, const char* name) const;
+  std::string_view text_of(pugi::xml_node node, const char* name) const;
+  std::string attr(pugi::xml_node node, const char* name) const { return std::string(text_of(node, name)); }
   bool has_attr(pugi::xml_node node, const char* name) const { return !node.attribute(name).empty(); }
   std::string href(pugi::xml_node node) const;
   int line_of(pugi::xml_node node) const;
   std::string where(pugi::xml_node node) const;
   [[noreturn]] void fail(pugi::xml_node node, const std::string& message) const;
+  [[noreturn]] void too_many_curves(pugi::xml_node node) const;
 
   // --- walking ---
   void walk(pugi::xml_node node, Context ctx);
   void walk_children(pugi::xml_node node, const Context& ctx);
   bool apply_style(pugi::xml_node node, std::string_view tag, Context& ctx);  // false: display:none
+  bool apply_declaration(pugi::xml_node node, std::string_view name, std::string_view value, Context& ctx);
+  std::optional<Paint> paint(pugi::xml_node node, std::string_view value, const Context& ctx) const;
   void apply_side_colors(pugi::xml_node node, Context& ctx);
   void apply_transform(pugi::xml_node node, Context& ctx);
   void walk_use(pugi::xml_node node, Context ctx);
@@ -97,10 +153,12 @@ class Reader {
 
   pugi::xml_document doc_;
   EntityTable entities_;
-  std::vector<std::size_t> line_starts_;
-  std::unordered_map<std::string, pugi::xml_node> ids_;
-  std::unordered_map<const void*, int> element_index_;
+  LineIndex lines_;
+  // Views of the id attributes' values, which stay in place once prepare_tree has run.
+  std::unordered_map<std::string_view, pugi::xml_node> ids_;
   std::unordered_map<const void*, int> source_index_;
+  std::unordered_map<const void*, int> renamed_lines_;  // elements whose name was repaired
+  mutable std::size_t attribute_text_ = 0;              // characters read by text_of so far
   std::unordered_set<std::string> svg_prefixes_;  // namespace prefixes bound to SVG ("svg" usually)
   bool default_namespace_is_svg_ = true;
   StyleSheet stylesheet_;
@@ -118,10 +176,6 @@ class Reader {
 // Document structure
 
 void Reader::parse_document() {
-  line_starts_.push_back(0);
-  for (std::size_t i = 0; i < text_.size(); ++i)
-    if (text_[i] == '\n') line_starts_.push_back(i + 1);
-
   entities_ = EntityTable::from_document(text_, options_.max_entity_expansion);
   for (const auto& name : entities_.external())
     warn_once("external-entity:" + name, "external entity '" + name + "' is not loaded");
@@ -130,9 +184,8 @@ void Reader::parse_document() {
       doc_.load_buffer(text_.data(), text_.size(), pugi::parse_default, pugi::encoding_auto);
   if (!result) {
     const std::size_t offset = result.offset < 0 ? 0 : static_cast<std::size_t>(result.offset);
-    const auto it = std::upper_bound(line_starts_.begin(), line_starts_.end(), offset);
     throw InputError(std::string("not well-formed XML: ") + result.description(),
-                     "line " + std::to_string(it - line_starts_.begin()));
+                     "line " + std::to_string(lines_.line_of(offset)));
   }
 }
 
@@ -144,14 +197,16 @@ std::string_view Reader::local_name(pugi::xml_node node) const {
   return {};
 }
 
-std::string Reader::attr(pugi::xml_node node, const char* name) const {
-  const char* value = node.attribute(name).value();
-  if (entities_.empty() || !std::strchr(value, '&')) return value;
-  try {
-    return entities_.expand(value);
-  } catch (const InputError& e) {
-    fail(node, e.message());
-  }
+// The value of an attribute that is read (parsed or matched), counted against
+// options_.max_attribute_text: an element drawn through many <use> is read as many times, and a
+// long attribute so multiplied would keep the reader busy for hours.
+std::string_view Reader::text_of(pugi::xml_node node, const char* name) const {
+  const std::string_view value = node.attribute(name).value();
+  attribute_text_ += value.size();
+  if (attribute_text_ > options_.max_attribute_text)
+    fail(node, "the attributes read amount to more than " + std::to_string(options_.max_attribute_text) +
+                   " characters, each <use> instance reading its element's again (a limit of the reader)");
+  return value;
 }
 
 std::string Reader::href(pugi::xml_node node) const {
@@ -164,25 +219,96 @@ std::string Reader::href(pugi::xml_node node) const {
 
 int Reader::line_of(pugi::xml_node node) const {
   const std::ptrdiff_t offset = node.offset_debug();
-  if (offset < 0) return 0;
-  const auto it = std::upper_bound(line_starts_.begin(), line_starts_.end(), static_cast<std::size_t>(offset));
-  return static_cast<int>(it - line_starts_.begin());
+  if (offset < 0) {
+    const auto renamed = renamed_lines_.find(node.internal_object());
+    return renamed == renamed_lines_.end() ? 0 : renamed->second;
+  }
+  return lines_.line_of(static_cast<std::size_t>(offset));
 }
 
 std::string Reader::where(pugi::xml_node node) const {
-  std::string w = "line " + std::to_string(line_of(node)) + ", <" + node.name();
-  if (const char* id = node.attribute("id").value(); *id) w += std::string(" id=\"") + id + "\"";
+  // Repaired: a message may name an element before prepare_tree has reached it.
+  std::string w = "line " + std::to_string(line_of(node)) + ", <" + base::repair_utf8(node.name());
+  if (const char* id = node.attribute("id").value(); *id) w += " id=\"" + base::repair_utf8(id) + "\"";
   return w + ">";
 }
 
 void Reader::fail(pugi::xml_node node, const std::string& message) const { throw InputError(message, where(node)); }
 
+// The text is read as pugixml decoded it (it converts UTF-16 and Latin-1 to UTF-8, but passes
+// malformed UTF-8 through): entity references are expanded where the reader reads text
+// (attribute values, <style> sheets), then every name and value is made well-formed UTF-8, as a
+// browser decodes a malformed document. Nothing the reader passes on (ids, paints, warnings,
+// messages) can then break a JSON library. Iterative: a document of any depth is safe here.
+void Reader::prepare_tree() {
+  TextRepairs repairs;
+  pugi::xml_node node = doc_.first_child();
+  while (node) {
+    prepare_node(node, repairs);
+    if (const pugi::xml_node child = node.first_child()) {
+      node = child;
+      continue;
+    }
+    while (node && !node.next_sibling()) {
+      node = node.parent();
+      if (node.type() == pugi::node_document) node = pugi::xml_node();
+    }
+    if (node) node = node.next_sibling();
+  }
+  if (repairs.bytes > 0)
+    soup_.warnings.push_back("invalid UTF-8 replaced by U+FFFD (" + std::to_string(repairs.bytes) + " byte" +
+                             (repairs.bytes == 1 ? "" : "s") + ", the first at line " +
+                             std::to_string(repairs.first_line) + ")");
+}
+
+// `s` made well-formed UTF-8, counted in `repairs` at the line of `node`; nothing when it is
+// well-formed already (the common case, which costs one scan).
+std::optional<std::string> Reader::repaired(std::string_view s, pugi::xml_node node, TextRepairs& repairs) {
+  if (base::valid_utf8(s)) return std::nullopt;
+  std::size_t replaced = 0;
+  std::string out = base::repair_utf8(s, &replaced);
+  if (repairs.bytes == 0) repairs.first_line = line_of(node);
+  repairs.bytes += replaced;
+  return out;
+}
+
+void Reader::prepare_node(pugi::xml_node node, TextRepairs& repairs) {
+  if (auto name = repaired(node.name(), node, repairs)) {
+    renamed_lines_[node.internal_object()] = line_of(node);  // pugixml loses the offset of a renamed node
+    node.set_name(name->c_str());
+  }
+  const auto expanded = [&](std::string_view value) -> std::optional<std::string> {
+    if (entities_.empty() || value.find('&') == std::string_view::npos) return std::nullopt;
+    try {
+      return entities_.expand(value);
+    } catch (const InputError& e) {
+      fail(node.type() == pugi::node_element ? node : node.parent(), e.message());
+    }
+  };
+  if (node.type() == pugi::node_pcdata || node.type() == pugi::node_cdata) {
+    // Of all text, the reader reads style sheets only (any prefix: the namespaces are not known yet).
+    const std::string_view parent = node.parent().name();
+    const bool sheet = parent == "style" || parent.ends_with(":style");
+    std::optional<std::string> text = sheet ? expanded(node.value()) : std::nullopt;
+    if (auto fixed = repaired(text ? *text : std::string_view(node.value()), node, repairs))
+      text = std::move(fixed);
+    if (text) node.set_value(text->c_str());
+  }
+  for (pugi::xml_attribute a : node.attributes()) {
+    if (auto name = repaired(a.name(), node, repairs)) a.set_name(name->c_str());
+    std::optional<std::string> value = expanded(a.value());
+    if (auto fixed = repaired(value ? *value : std::string_view(a.value()), node, repairs))
+      value = std::move(fixed);
+    if (value) a.set_value(value->c_str());
+  }
+}
+
 void Reader::warn_once(const std::string& key, const std::string& message) {
   if (warned_.insert(key).second) soup_.warnings.push_back(message);
 }
 
-// One pass over the whole document (iterative, so any depth is safe here): ids, document order,
-// <style> sheets, namespace prefixes and the nesting depth.
+// One pass over the whole document (iterative, so any depth is safe here): ids, <style> sheets,
+// namespace prefixes and the nesting depth.
 void Reader::index_document(pugi::xml_node root) {
   for (const pugi::xml_attribute a : root.attributes()) {
     const std::string_view n = a.name();
@@ -195,28 +321,31 @@ void Reader::index_document(pugi::xml_node root) {
       svg_prefixes_.insert(std::string(n.substr(6)));
   }
   // A prefixed root (<svg:svg xmlns:svg="...">) is SVG even when the default namespace is not.
-  int index = 0;
-  std::vector<std::pair<pugi::xml_node, int>> stack{{root, 1}};
-  while (!stack.empty()) {
-    const auto [node, depth] = stack.back();
-    stack.pop_back();
+  int depth = 1;
+  for (pugi::xml_node node = root; node; node = next_element(node, root, depth)) {
     if (depth > options_.max_depth)
       fail(node, "elements nested deeper than " + std::to_string(options_.max_depth) + " levels");
-    element_index_[node.internal_object()] = index++;
     if (const char* id = node.attribute("id").value(); *id) ids_.emplace(id, node);  // first id wins
     if (local_name(node) == "style") {
       std::string css;
       for (const pugi::xml_node child : node.children())
         if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) css += child.value();
-      if (!entities_.empty()) css = entities_.expand(css);
-      stylesheet_.add(css);
+      try {
+        stylesheet_.add(css);
+      } catch (const InputError& e) {
+        fail(node, e.message());
+      }
     }
-    // Push children in reverse so they are visited in document order.
-    std::vector<pugi::xml_node> children;
-    for (const pugi::xml_node child : node.children(/*any*/))
-      if (child.type() == pugi::node_element) children.push_back(child);
-    for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back({*it, depth + 1});
   }
+}
+
+// Each source's position in document order, counting every element: found once the drawing is
+// walked, for the few elements that draw, rather than kept for all.
+void Reader::number_sources(pugi::xml_node root) {
+  int index = 0, depth = 1;
+  for (pugi::xml_node node = root; node; node = next_element(node, root, depth), ++index)
+    if (const auto it = source_index_.find(node.internal_object()); it != source_index_.end())
+      soup_.sources[it->second].index = index;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -224,49 +353,72 @@ void Reader::index_document(pugi::xml_node root) {
 
 bool Reader::apply_style(pugi::xml_node node, std::string_view tag, Context& ctx) {
   // Cascade, lowest precedence first: presentation attributes, style sheet, style attribute.
-  static constexpr const char* kProperties[] = {"fill",       "stroke",    "color", "display",
-                                                "visibility", "fill-rule", "clip-path", "mask"};
-  Declarations decls;
-  for (const char* p : kProperties)
-    if (has_attr(node, p)) decls.emplace_back(p, attr(node, p));
-  if (!stylesheet_.empty()) stylesheet_.match(tag, node.attribute("id").value(), attr(node, "class"), decls);
-  if (has_attr(node, "style")) {
-    const Declarations inline_decls = parse_declarations(attr(node, "style"));
-    decls.insert(decls.end(), inline_decls.begin(), inline_decls.end());
-  }
-  if (decls.empty()) return true;
-
-  // `color` first: currentColor in fill/stroke refers to this element's computed colour.
-  for (const auto& [name, value] : decls)
-    if (name == "color")
-      if (auto c = parse_color(value)) ctx.color = *c;
-  for (const auto& [name, value] : decls) {
-    if (name == "fill") {
-      if (auto p = parse_paint(value, ctx.color)) {
-        ctx.fill = *p;
-      } else if (trim_svg_whitespace(value) != "inherit") {
-        // Not a paint we can read: leave the element unfilled rather than guess its colour.
-        ctx.fill = Paint{};
-        warn_once("bad-fill:" + std::string(value), where(node) + ": fill=\"" + std::string(value) +
-                                                        "\" is not a paint this reader understands: left unfilled");
-      }
-    } else if (name == "fill-rule") {
-      const std::string_view v = trim_svg_whitespace(value);
-      if (v == "evenodd") ctx.fill_rule = FillRule::evenodd;
-      if (v == "nonzero") ctx.fill_rule = FillRule::nonzero;
-    } else if (name == "clip-path" || name == "mask") {
-      if (trim_svg_whitespace(value) != "none") ++soup_.clipped_elements;
-    } else if (name == "stroke") {
-      if (auto p = parse_paint(value, ctx.color)) ctx.stroke = *p;
-    } else if (name == "display") {
-      if (trim_svg_whitespace(value) == "none") return false;
-    } else if (name == "visibility") {
-      const std::string_view v = trim_svg_whitespace(value);
-      if (v == "hidden" || v == "collapse") ctx.visible = false;
-      if (v == "visible") ctx.visible = true;
+  // Visited in place, never gathered: a style attribute may be as large as the file.
+  std::vector<const Declarations*> sheet;
+  if (!stylesheet_.empty()) {
+    try {
+      stylesheet_.match(tag, text_of(node, "id"), text_of(node, "class"), sheet);
+    } catch (const InputError& e) {
+      fail(node, e.message());
     }
   }
+  const auto visit = [&](const std::function<bool(std::string_view, std::string_view)>& f) {
+    for (const char* p : kStyleProperties)
+      if (has_attr(node, p) && !f(p, text_of(node, p))) return false;
+    for (const Declarations* block : sheet)
+      for (const auto& [name, value] : *block)
+        if (!f(name, value)) return false;
+    return for_each_declaration(text_of(node, "style"), f);
+  };
+  // `color` first: currentColor in fill/stroke refers to this element's computed colour.
+  visit([&](std::string_view name, std::string_view value) {
+    if (name == "color")
+      if (auto c = parse_color(value)) ctx.color = *c;
+    return true;
+  });
+  return visit([&](std::string_view name, std::string_view value) {
+    return apply_declaration(node, name, value, ctx);
+  });
+}
+
+// One declaration of the cascade; false when it hides the element (display: none).
+bool Reader::apply_declaration(pugi::xml_node node, std::string_view name, std::string_view value,
+                               Context& ctx) {
+  if (name == "fill") {
+    if (auto p = paint(node, value, ctx)) {
+      ctx.fill = *p;
+    } else if (trim_svg_whitespace(value) != "inherit") {
+      // Not a paint we can read: leave the element unfilled rather than guess its colour.
+      ctx.fill = Paint{};
+      warn_once("bad-fill:" + std::string(value),
+                where(node) + ": fill=\"" + std::string(value) +
+                    "\" is not a paint this reader understands: left unfilled");
+    }
+  } else if (name == "fill-rule") {
+    const std::string_view v = trim_svg_whitespace(value);
+    if (v == "evenodd") ctx.fill_rule = FillRule::evenodd;
+    if (v == "nonzero") ctx.fill_rule = FillRule::nonzero;
+  } else if (name == "clip-path" || name == "mask") {
+    if (trim_svg_whitespace(value) != "none") ++soup_.clipped_elements;
+  } else if (name == "stroke") {
+    if (auto p = paint(node, value, ctx)) ctx.stroke = *p;
+  } else if (name == "display") {
+    if (trim_svg_whitespace(value) == "none") return false;
+  } else if (name == "visibility") {
+    const std::string_view v = trim_svg_whitespace(value);
+    if (v == "hidden" || v == "collapse") ctx.visible = false;
+    if (v == "visible") ctx.visible = true;
+  }
   return true;
+}
+
+// parse_paint, refusing a reference too long to be copied onto every curve the element draws.
+std::optional<Paint> Reader::paint(pugi::xml_node node, std::string_view value, const Context& ctx) const {
+  std::optional<Paint> p = parse_paint(value, ctx.color);
+  if (p && p->kind == Paint::Kind::url && p->url.size() > kMaxPaintReference)
+    fail(node, "a paint refers to an id of more than " + std::to_string(kMaxPaintReference) +
+                   " characters (a limit of the reader)");
+  return p;
 }
 
 // The two colours of a diffusion curve are data attributes, not CSS properties: no style sheet or
@@ -367,8 +519,8 @@ void Reader::walk(pugi::xml_node node, Context ctx) {
   if (++ctx.depth > options_.max_depth)
     fail(node, "elements nested deeper than " + std::to_string(options_.max_depth) + " levels (through <use>)");
   if (++instantiated_ > options_.max_elements)
-    fail(node, "the document expands to more than " + std::to_string(options_.max_elements) +
-                   " elements through <use>");
+    fail(node, "the document has more than " + std::to_string(options_.max_elements) +
+                   " elements, each <use> instance counted (--max-elements raises the limit)");
   if (!apply_style(node, tag, ctx)) return;
   apply_side_colors(node, ctx);
 
@@ -454,7 +606,7 @@ void Reader::walk_use(pugi::xml_node node, Context ctx) {
     warn_once("external-use", "<use> of another file ('" + ref + "') is not followed");
     return;
   }
-  const auto it = ids_.find(ref.substr(1));
+  const auto it = ids_.find(std::string_view(ref).substr(1));
   if (it == ids_.end()) {
     warn_once("missing-use:" + ref, "<use> refers to a missing element '" + ref + "'");
     return;
@@ -508,23 +660,32 @@ int Reader::source_of(pugi::xml_node node, std::string_view tag) {
     SourceElement s;
     s.tag = std::string(tag);
     s.id = node.attribute("id").value();
-    s.index = element_index_.count(node.internal_object()) ? element_index_.at(node.internal_object()) : -1;
+    s.index = -1;  // number_sources sets it
     s.line = line_of(node);
     soup_.sources.push_back(std::move(s));
   }
   return it->second;
 }
 
+void Reader::too_many_curves(pugi::xml_node node) const {
+  fail(node, "the document has more than " + std::to_string(options_.max_curves) +
+                 " curves (--max-curves raises the limit)");
+}
+
 void Reader::draw_shape(pugi::xml_node node, std::string_view tag, const Context& ctx) {
   std::vector<Subpath> subpaths;
+  // What is left of the curves allowed, so that parsing stops there, before taking the memory.
+  const std::size_t allowed = options_.max_curves - curve_count_;
   if (tag == "path") {
     try {
       bool truncated = false;
-      subpaths = parse_path_data(attr(node, "d"), &truncated);
+      subpaths = parse_path_data(attr(node, "d"), &truncated, allowed);
       if (truncated)
         warn_once("truncated-path", where(node) + ": path data ends inside a command; drawn up to there");
     } catch (const SyntaxError& e) {
       fail(node, std::string("bad path data: ") + e.what() + " at offset " + std::to_string(e.offset()));
+    } catch (const TooManyPieces&) {
+      too_many_curves(node);
     }
   } else if (tag == "rect") {
     const double w = length(node, "width", Axis::x, ctx, 0), h = length(node, "height", Axis::y, ctx, 0);
@@ -549,10 +710,12 @@ void Reader::draw_shape(pugi::xml_node node, std::string_view tag, const Context
   } else {  // polyline, polygon
     try {
       bool odd = false;
-      subpaths = polyline_subpaths(attr(node, "points"), tag == "polygon", &odd);
+      subpaths = polyline_subpaths(attr(node, "points"), tag == "polygon", &odd, allowed);
       if (odd) warn_once("odd-points", "a points list with an odd number of coordinates: the last was dropped");
     } catch (const SyntaxError& e) {
       fail(node, std::string("bad points: ") + e.what() + " at offset " + std::to_string(e.offset()));
+    } catch (const TooManyPieces&) {
+      too_many_curves(node);
     }
   }
   emit(node, tag, subpaths, ctx);
@@ -564,7 +727,7 @@ void Reader::emit(pugi::xml_node node, std::string_view tag, const std::vector<S
   const int source = source_of(node, tag);
   Paint fill = ctx.fill;
   // A paint server that is not in the document paints nothing (there is no fallback colour here).
-  if (fill.kind == Paint::Kind::url && !ids_.count(fill.url)) fill = Paint{};
+  if (fill.kind == Paint::Kind::url && !ids_.count(std::string_view(fill.url))) fill = Paint{};
   FillLayer* layer = nullptr;
   if (fill.kind != Paint::Kind::none) {
     soup_.fills.push_back({source, fill, ctx.fill_rule, {}, {}});
@@ -598,9 +761,9 @@ void Reader::emit(pugi::xml_node node, std::string_view tag, const std::vector<S
       layer->subpaths.push_back(std::move(loop));
       out.filled = true;
     }
-    curve_count_ += out.segments.size();
-    if (curve_count_ > options_.max_curves)
-      fail(node, "the document has more than " + std::to_string(options_.max_curves) + " curves");
+    // A subpath without a segment becomes an isolated point, which costs as much as a curve.
+    curve_count_ += std::max<std::size_t>(1, out.segments.size());
+    if (curve_count_ > options_.max_curves) too_many_curves(node);
     pending_.push_back(std::move(out));
   }
 }
@@ -609,6 +772,7 @@ void Reader::emit(pugi::xml_node node, std::string_view tag, const std::vector<S
 
 FeatureSoup Reader::read() {
   parse_document();
+  prepare_tree();
   const pugi::xml_node root = doc_.document_element();
   if (!root) throw InputError("no root element");
   const std::string_view root_name = root.name();
@@ -641,6 +805,7 @@ FeatureSoup Reader::read() {
     ctx.depth = 1;
     walk_children(root, ctx);
   }
+  number_sources(root);
 
   for (const auto& [kind, count] : skipped_kinds_)
     soup_.warnings.push_back("skipped " + std::to_string(count) + " <" + kind + "> element" +
@@ -652,6 +817,8 @@ FeatureSoup Reader::read() {
     extent.add(sp.start);
     for (const CubicBezier& c : sp.segments) extent.add(c.control_bounds());
   }
+  // Outside this range lengths relative to the drawing's size overflow or underflow, here first.
+  if (const std::string problem = drawing_size_problem(extent); !problem.empty()) throw InputError(problem);
   const double tolerance = options_.degenerate_tolerance_rel * extent.diagonal();
   soup_.curves.reserve(curve_count_);
   for (PendingSubpath& sp : pending_) {
@@ -693,20 +860,21 @@ FeatureSoup read_svg(std::string_view text, const ReadOptions& options, const st
   try {
     return Reader(text, options).read();
   } catch (const InputError& e) {
-    // Prefix the file name once, here, so every message names it.
-    throw InputError(e.message(), e.where().empty() ? filename : filename + ": " + e.where());
+    // Prefix the file name once, here, so every message names it (shown as it may be printed:
+    // a file's name can hold any byte).
+    const std::string name = base::printable(filename);
+    throw InputError(e.message(), e.where().empty() ? name : name + ": " + e.where());
   }
 }
 
 FeatureSoup read_svg_file(const std::string& path, const ReadOptions& options) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError("is a directory, not a file", path);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot open the file", path);
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw InputError("cannot read the file", path);
-  return read_svg(buffer.str(), options, path);
+  std::string text;
+  try {
+    text = base::read_input_file(path, options.max_input_bytes, "--max-input-mb");
+  } catch (const base::InputFileError& e) {
+    throw input_error(e, path);
+  }
+  return read_svg(text, options, path);
 }
 
 }  // namespace curvemesh::svg

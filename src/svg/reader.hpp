@@ -23,20 +23,31 @@ struct ReadOptions {
   // Refuse documents nested deeper than this (elements inside elements, <use> included).
   int max_depth = 512;
   // Refuse documents that expand (through <use>) to more curves or elements than this: a small
-  // file can otherwise describe an exponentially large drawing (Limits, the public defaults).
+  // file can otherwise describe an exponentially large drawing (Limits, the public defaults). A
+  // subpath without a segment (a moveto alone, read as an isolated point) counts as a curve; path
+  // data and points lists are parsed no further than the curves left.
   std::size_t max_curves = Limits{}.max_curves;
   std::size_t max_elements = Limits{}.max_elements;
-  // Refuse documents whose entity references expand to more characters than this.
+  // Refuse documents whose entity references expand to more characters than this in all: the
+  // declarations' own expansion and every reference in every attribute and style sheet, summed.
   std::size_t max_entity_expansion = 1u << 24;
+  // Refuse documents whose attributes, as read (parsed or matched against style sheets), amount
+  // to more characters than this: an element drawn through <use> is read again for each instance,
+  // and a long attribute multiplied so would keep the reader busy for hours. Drawings read at most
+  // twice their file's size (openclipart's 114 files above 200 KB); 1 Gi characters take seconds.
+  std::size_t max_attribute_text = std::size_t(1) << 30;
   // read_svg_file refuses larger files.
   std::uint64_t max_input_bytes = static_cast<std::uint64_t>(Limits{}.max_input_mb * 1048576.0);
 };
 
 // Reads SVG text. `filename` is only used in messages. Throws InputError when the document is
-// refused (message names the line and element where it can).
+// refused (message names the line and element where it can). Malformed UTF-8 is replaced by
+// U+FFFD, with a warning: every string of the soup, and every message, is well-formed UTF-8.
 FeatureSoup read_svg(std::string_view text, const ReadOptions& options = {}, const std::string& filename = "<input>");
 
-// Reads an SVG file; throws InputError when it cannot be opened or is refused.
+// Reads an SVG file; throws InputError when it cannot be opened, is not a regular file (a FIFO or
+// a device is refused without waiting on it), is larger than options.max_input_bytes, or is
+// refused.
 FeatureSoup read_svg_file(const std::string& path, const ReadOptions& options = {});
 
 }  // namespace curvemesh::svg

@@ -57,7 +57,8 @@ std::vector<Subpath> ellipse_subpaths(double cx, double cy, double rx, double ry
   return {sp};
 }
 
-std::vector<Subpath> polyline_subpaths(std::string_view points, bool closed, bool* odd_count) {
+std::vector<Subpath> polyline_subpaths(std::string_view points, bool closed, bool* odd_count,
+                                       std::size_t max_pieces) {
   NumberScanner in(points);
   std::vector<Vec2> pts;
   *odd_count = false;
@@ -70,11 +71,13 @@ std::vector<Subpath> polyline_subpaths(std::string_view points, bool closed, boo
     }
     const double y = in.number();
     in.skip_separator();
+    // n points make n - 1 segments (and a closing one): the first is free.
+    if (pts.size() > max_pieces) throw TooManyPieces();
     pts.emplace_back(x, y);
   }
   in.skip_whitespace();
   if (!in.at_end() && !*odd_count)
-    throw SyntaxError(std::string("unexpected '") + in.peek() + "' in points", in.position());
+    throw SyntaxError("unexpected '" + in.shown_next() + "' in points", in.position());
   if (pts.empty()) return {};
   Subpath sp;
   sp.start = pts.front();

@@ -16,7 +16,9 @@ std::vector<Subpath> rect_subpaths(double x, double y, double width, double heig
 // An ellipse as four quarter cubics starting at (cx + rx, cy); nothing when a radius ≤ 0.
 std::vector<Subpath> ellipse_subpaths(double cx, double cy, double rx, double ry);
 // A points list; a trailing odd coordinate is dropped and reported through `odd_count`.
-// Throws SyntaxError on a malformed number.
-std::vector<Subpath> polyline_subpaths(std::string_view points, bool closed, bool* odd_count);
+// Throws SyntaxError on a malformed number, and TooManyPieces (path_data.hpp) as soon as the
+// points make more than `max_pieces` segments.
+std::vector<Subpath> polyline_subpaths(std::string_view points, bool closed, bool* odd_count,
+                                       std::size_t max_pieces = std::numeric_limits<std::size_t>::max());
 
 }  // namespace curvemesh::svg

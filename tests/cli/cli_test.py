@@ -99,7 +99,7 @@ with tempfile.TemporaryDirectory() as tmp:
     r = run("features", os.path.join(tmp, "does-not-exist.svg"), "-o", os.path.join(tmp, "x.json"))
     check("missing file exit 1", r.returncode == 1 and "does-not-exist.svg" in r.stderr, r.stderr)
     r = run("features", tmp, "-o", os.path.join(tmp, "x.json"))
-    check("directory exit 1", r.returncode == 1 and "directory" in r.stderr, r.stderr)
+    check("directory exit 1", r.returncode == 1 and "is a folder, not a regular file" in r.stderr, r.stderr)
     r = run("features", ex, "-o", os.path.join(tmp, "no-such-dir", "x.json"))
     check("unwritable output exit 1", r.returncode == 1 and "no-such-dir" in r.stderr, r.stderr)
 

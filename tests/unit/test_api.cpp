@@ -287,10 +287,19 @@ TEST(Api, CurvesThatAreNotFiniteAreRefused) {
     EXPECT_EQ(kind, Error::Kind::invalid_input);
     EXPECT_EQ(message.find("<curves>: curve 2 has a coordinate that is not a finite number"), 0u) << message;
   }
-  // Finite, but too large for the drawing's diagonal to be a double.
+  // Finite, but too large to mesh in doubles (its diagonal would overflow).
   auto [kind, message] = error_of([] { mesh_curves(circle(0, 0, 1e200)); });
   EXPECT_EQ(kind, Error::Kind::invalid_input);
-  EXPECT_EQ(message, "<curves>: coordinates too large: the drawing's diagonal overflows a double");
+  EXPECT_EQ(
+      message,
+      "<curves>: the drawing reaches a coordinate of 1e+200, beyond 1e+100: too large to mesh in double "
+      "precision; scale it down");
+  // Too small: lengths relative to its size would underflow.
+  std::tie(kind, message) = error_of([] { mesh_curves(circle(0, 0, 1e-160)); });
+  EXPECT_EQ(kind, Error::Kind::invalid_input);
+  EXPECT_EQ(message,
+            "<curves>: the drawing is 2.8e-160 across, smaller than 1e-100: too small to mesh in double "
+            "precision; scale it up");
   // Nothing at all.
   std::tie(kind, message) = error_of([] { mesh_curves({}); });
   EXPECT_EQ(kind, Error::Kind::invalid_input);
@@ -361,7 +370,7 @@ TEST(Api, CheckFileFindsAnInvertedElement) {
   EXPECT_EQ(message, dir / "broken.msh" + ": line 6: $Nodes: not closed: the file ends inside it");
   std::tie(kind, message) = error_of([&] { check_file(dir / "missing.msh"); });
   EXPECT_EQ(kind, Error::Kind::invalid_input);
-  EXPECT_EQ(message, dir / "missing.msh" + ": cannot be read");
+  EXPECT_EQ(message, dir / "missing.msh" + ": cannot open the file (No such file or directory)");
 }
 
 TEST(Api, WriteFailures) {

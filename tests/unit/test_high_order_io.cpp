@@ -3,6 +3,7 @@
 // read by meshio with VTK's node order checked against VTK's reference coordinates.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -282,6 +283,21 @@ TEST(HighOrderMsh, NeverCrashesOnDamagedFiles) {
   }
 }
 
+// read_msh with the limit `curvemesh check` has by default.
+HighOrderMesh read_msh(const std::string& path) {
+  return io::read_msh(path, static_cast<std::uint64_t>(kDefaultMaxMshMb * 1048576), "--max-input-mb");
+}
+
+// What read_msh throws for `path` with a limit of `max_bytes`, or "" when it reads it.
+std::string read_error(const std::string& path, std::uint64_t max_bytes) {
+  try {
+    io::read_msh(path, max_bytes, "--max-input-mb");
+  } catch (const MshError& e) {
+    return e.what();
+  }
+  return "";
+}
+
 TEST(HighOrderMsh, ReadMshNamesThePath) {
   EXPECT_THROW(read_msh("/nonexistent/dir/x.msh"), MshError);
   const ScratchDir dir;
@@ -295,6 +311,24 @@ TEST(HighOrderMsh, ReadMshNamesThePath) {
   }
   write_msh(grid(3), path, {22});
   expect_same(read_msh(path), grid(3));
+}
+
+TEST(HighOrderMsh, ReadMshRefusesWhatIsNotABoundedRegularFile) {
+  const ScratchDir dir;
+  const auto path = dir / "grid.msh";
+  write_msh(grid(3), path, {41});
+  const auto size = std::filesystem::file_size(path);
+  EXPECT_EQ(read_error(path, size), "");
+  // One byte over the limit: refused, the message starting with the path and naming the option.
+  const std::string large = read_error(path, size - 1);
+  EXPECT_THAT(large, testing::StartsWith(path + ": "));
+  EXPECT_THAT(large, testing::HasSubstr("--max-input-mb"));
+  // Not regular: refused without being read (a FIFO with no writer would block a plain open).
+  EXPECT_THAT(read_error(dir / "", 1 << 20), testing::HasSubstr("a folder"));
+  EXPECT_THAT(read_error("/dev/zero", 1 << 20), testing::HasSubstr("a character device"));
+  const auto fifo = dir / "fifo.msh";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_THAT(read_error(fifo, 1 << 20), testing::HasSubstr("a FIFO"));
 }
 
 bool have_python(const char* modules) {

@@ -54,11 +54,12 @@ TEST(Style, SheetSpecificityAndOrder) {
     * { color: gray }
   )");
   auto value = [&](std::string_view tag, std::string_view id, std::string_view cls, const std::string& prop) {
-    Declarations out;
+    std::vector<const Declarations*> out;
     sheet.match(tag, id, cls, out);
     std::string v;
-    for (const auto& [n, val] : out)
-      if (n == prop) v = val;  // the last wins
+    for (const Declarations* block : out)
+      for (const auto& [n, val] : *block)
+        if (n == prop) v = val;  // the last wins
     return v;
   };
   EXPECT_EQ(value("path", "", "", "fill"), "red");

@@ -62,6 +62,38 @@ TEST(PipelineExtremes, HugeAndTinyScales) {
   }
 }
 
+// The sizes of drawing meshed (svg/drawing_size.hpp): at both ends of the range, meshed curved
+// and certified; beyond them, refused with the reason instead of meshed wrong or not certified.
+TEST(PipelineExtremes, SizesAtTheEndsOfTheRange) {
+  // kCrossing is about 1.4 across, its coordinates at most 1 in magnitude.
+  for (const double scale : {1.01e-100 / 1.4, 0.6e100}) {
+    SCOPED_TRACE(scale);
+    const Curves curves = moved(kCrossing, {0, 0}, scale);
+    expect_certified(pipeline::run(pipeline::Source::beziers(curves, "scaled"), {}));
+    pipeline::Parameters linear;
+    linear.linear = true;
+    expect_certified(pipeline::run(pipeline::Source::beziers(curves, "scaled"), linear));
+  }
+  const auto error_of = [](double scale) -> std::string {
+    try {
+      pipeline::run(pipeline::Source::beziers(moved(kCrossing, {0, 0}, scale), "scaled"), {});
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), Error::Kind::invalid_input);
+      return e.what();
+    }
+    return "meshed";
+  };
+  EXPECT_EQ(error_of(1e-160).find(
+                "scaled: the drawing is 1.4e-160 across, smaller than 1e-100: too small to mesh in "
+                "double precision; scale it up"),
+            0u)
+      << error_of(1e-160);
+  EXPECT_NE(error_of(0.9e-100 / 1.4).find("smaller than 1e-100"), std::string::npos);
+  EXPECT_NE(error_of(1e200).find("beyond 1e+100: too large to mesh in double precision; scale it down"),
+            std::string::npos);
+  EXPECT_NE(error_of(0.9e100).find("across, larger than 1e+100"), std::string::npos);
+}
+
 // Found by fuzz/fuzz_pipeline.cpp (written out with FUZZ_PIPELINE_SVG): a cubic twice over and a
 // flat one, at 1e12. Under UndefinedBehaviorSanitizer (CURVEMESH_SANITIZE=ON) the optimizer's
 // stop rule overflowed here: its first iteration compared four times "the previous iteration's

@@ -44,7 +44,8 @@ TEST(PolyInput, OneBasedWithMarkersAttributesHolesAndComments) {
   const auto f = read_poly(write_temp(dir, "square1",
                                       "4 2 1 1  # attributes and markers\n1 0 0 7 1\n2 2 0 7 1\n3 2 2 7 1\n"
                                       "4 0 2 7 1\n3 1\n1 1 2 1\n2 2 3 1\n3 2 3 0  # duplicate\n"
-                                      "1\n1 0.5 0.5\n"));
+                                      "1\n1 0.5 0.5\n"),
+                           Limits{});
   EXPECT_EQ(f.segments.size(), 2u);  // the duplicate is kept once
   ASSERT_EQ(f.points.size(), 1u);    // vertex 4 is used by no segment
   EXPECT_EQ(f.points[0].p, Vec2(0, 2));
@@ -52,7 +53,8 @@ TEST(PolyInput, OneBasedWithMarkersAttributesHolesAndComments) {
 
 TEST(PolyInput, ZeroLengthSegmentBecomesAPoint) {
   const ScratchDir dir;
-  const auto f = read_poly(write_temp(dir, "zero", "3 2 0 0\n0 0 0\n1 1 0\n2 1 0\n2 0\n0 0 1\n1 1 2\n"));
+  const auto f =
+      read_poly(write_temp(dir, "zero", "3 2 0 0\n0 0 0\n1 1 0\n2 1 0\n2 0\n0 0 1\n1 1 2\n"), Limits{});
   EXPECT_EQ(f.segments.size(), 1u);
   ASSERT_EQ(f.points.size(), 1u);
   EXPECT_EQ(f.points[0].p, Vec2(1, 0));
@@ -62,7 +64,7 @@ void expect_error(const ScratchDir& dir, const std::string& name, const std::str
                   const std::string& fragment, int line) {
   const std::string path = write_temp(dir, name, text);
   try {
-    read_poly(path);
+    read_poly(path, Limits{});
     FAIL() << name << ": accepted";
   } catch (const svg::InputError& e) {
     EXPECT_THAT(e.what(), testing::HasSubstr(fragment)) << name;
@@ -83,7 +85,34 @@ TEST(PolyInput, MalformedFilesNameTheLine) {
   expect_error(dir, "huge", "2000000000 2 0 0\n1 0 0\n", "fewer lines", 1);
   expect_error(dir, "sequence", "2 2 0 0\n1 0 0\n5 1 0\n0\n", "out of sequence", 3);
   expect_error(dir, "no_segments", "2 2 0 0\n1 0 0\n2 1 0\n", "file ends", 3);
-  EXPECT_THROW(read_poly("/nonexistent/x.poly"), svg::InputError);
+  EXPECT_THROW(read_poly("/nonexistent/x.poly", Limits{}), svg::InputError);
+}
+
+TEST(PolyInput, LimitsOnTheFileAndItsSegments) {
+  const ScratchDir dir;
+  const std::string square = "4 2 0 0\n0 0 0\n1 1 0\n2 1 1\n3 0 1\n4 0\n0 0 1\n1 1 2\n2 2 3\n3 3 0\n0\n";
+  Limits limits;
+  limits.max_curves = 4;
+  EXPECT_EQ(read_poly(write_temp(dir, "four", square), limits).segments.size(), 4u);
+  limits.max_curves = 3;
+  try {
+    read_poly(write_temp(dir, "four", square), limits);
+    ADD_FAILURE() << "four segments read with --max-curves 3";
+  } catch (const svg::InputError& e) {
+    EXPECT_THAT(e.what(), testing::HasSubstr("more than 3 segments (--max-curves raises the limit)"));
+  }
+  limits = Limits{};
+  limits.max_input_mb = double(square.size() - 1) / 1048576;  // one byte short
+  try {
+    read_poly(write_temp(dir, "four", square), limits);
+    ADD_FAILURE() << "a file above --max-input-mb read";
+  } catch (const svg::InputError& e) {
+    const std::string path = dir / "four.poly";
+    EXPECT_THAT(e.what(), testing::StartsWith(path + ": the file is larger"));
+    EXPECT_THAT(e.what(), testing::Not(testing::HasSubstr(path + ": " + path)));
+    EXPECT_THAT(e.what(), testing::HasSubstr("--max-input-mb"));
+  }
+  EXPECT_THROW(read_poly("/dev/zero", Limits{}), svg::InputError);
 }
 
 }  // namespace
