@@ -11,6 +11,7 @@
 #include <map>
 #include <unordered_map>
 
+#include "base/limits.hpp"
 #include "features/pieces.hpp"
 
 namespace curvemesh::features::detail {
@@ -83,10 +84,13 @@ std::vector<Segment> simplify_secondary(const Discretized& d, const Lengths& len
       }
   std::vector<Vec2> target(ends.size());
   std::vector<char> placed(ends.size(), 0);
+  std::size_t visits = 0;  // ends close together: a pile of coincident curves makes it quadratic
+  const auto count = [&] { base::check_pairs(++visits, len.max_triangles, 8, "curve ends within epsilon of each other"); };
   for (std::size_t k = 0; k < ends.size(); ++k) {
     double best = budget;
     int best_id = -1;
     primary_grid.near(ends[k], [&](int id) {
+      count();
       const double dist = (primary_vertices[id] - ends[k]).norm();
       if (dist <= best && (best_id < 0 || dist < best || id < best_id)) best = dist, best_id = id;
     });
@@ -101,6 +105,7 @@ std::vector<Segment> simplify_secondary(const Discretized& d, const Lengths& len
     if (placed[k]) continue;
     std::vector<int> members;
     grid.near(ends[k], [&](int id) {
+      count();
       if (!placed[id] && (ends[id] - ends[k]).norm() <= 0.5 * budget) members.push_back(id);
     });
     std::sort(members.begin(), members.end());

@@ -21,6 +21,7 @@
 #include <numbers>
 #include <numeric>
 
+#include "base/limits.hpp"
 #include "features/pieces.hpp"
 #include "geometry/vec2.hpp"
 
@@ -116,7 +117,9 @@ void tag_primary_secondary(Discretized& d, const Lengths& len) {
     if (!d.pieces[i].unfit && len.features) boxes.push_back(box_of(d.pieces[i].a, d.pieces[i].b, 0.5 * len.mu, i));
 
   std::vector<std::vector<int>> conflicts(n);
+  std::size_t pairs = 0;
   CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+    base::check_pairs(++pairs, len.max_triangles, 8, "pieces within mu of each other");
     const int i = x.info(), j = y.info();
     if (in_conflict(d, i, j, len)) {
       conflicts[i].push_back(j);

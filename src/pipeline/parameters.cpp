@@ -76,6 +76,7 @@ Resolved resolve(const Parameters& p, double diagonal) {
   l.alpha_rad = radians(p.alpha_deg);
   l.junction_angle_rad = radians(p.junction_angle_deg);
   l.features = p.features;
+  l.max_triangles = p.limits.max_triangles;
   r.triangulate.box_margin = std::max(p.box_margin_rel, 0.0) * r.d;
   r.triangulate.max_triangles = p.limits.max_triangles;
   r.optimize.max_triangles = p.limits.max_triangles;

@@ -72,6 +72,16 @@ fan = write("fan.svg", svg_head + '<defs><path id="g0" d="M0 0 L1 1 L2 0 L3 1 L4
             levels + '</defs><use xlink:href="#g6"/></svg>')
 expect("<use> fan-out to 10 million curves", ["mesh", fan, "-o", path("fan.msh"), "-q"], says=["--max-"])
 
+# Just under the limit on curves, but piled on one another: 490,000 curves in a few dozen places,
+# thousands of copies each, whose pairs of nearby pieces would number in the billions.
+segments = " ".join(f"L{i % 7} {(i * 3) % 5}" for i in range(49))
+levels = "".join(f'<g id="h{k}">' + "".join(f'<use xlink:href="#h{k - 1}" x="{i * 1.3:.1f}" y="{k * 0.7:.1f}"/>'
+                                            for i in range(10)) + "</g>" for k in range(1, 5))
+piled = write("piled.svg", svg_head + f'<defs><path id="h0" d="M0 0 {segments}" fill="none" stroke="black"/>' +
+              levels + '</defs><use xlink:href="#h4"/></svg>')
+expect("490,000 curves piled on one another", ["mesh", piled, "-o", path("piled.msh"), "-q"],
+       says=["too densely", "--max-triangles"])
+
 # A path of 15 million tiny segments in a 60 MB file (under the input size limit).
 with open(path("long-path.svg"), "w") as f:
     f.write(svg_head + '<path d="M0 0')

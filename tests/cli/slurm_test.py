@@ -182,7 +182,8 @@ def child_meshing(drawing):
                 argv = [a.decode(errors="replace") for a in f.read().split(b"\0")]
         except OSError:
             continue
-        if len(argv) > 2 and argv[1] == "mesh" and argv[2] == drawing:
+        # Batch passes the drawing after "--", so that no file name is read as an option.
+        if len(argv) > 2 and argv[1] == "mesh" and "--" in argv and drawing in argv[argv.index("--") + 1:]:
             return int(entry)
     return None
 
