@@ -124,7 +124,7 @@ PYBIND11_MODULE(_curvemesh, m) {
       .def_readwrite("box_margin_rel", &curvemesh::Parameters::box_margin_rel, "--box-margin")
       .def_readwrite("max_iterations", &curvemesh::Parameters::max_iterations, "--max-iterations")
       .def_readwrite("stop_amips", &curvemesh::Parameters::stop_amips, "--stop-amips")
-      .def_readwrite("linear", &curvemesh::Parameters::linear, "--linear")
+      .def_readwrite("order", &curvemesh::Parameters::order, "--order (1: --linear)")
       .def_readwrite("curved_stop_amips", &curvemesh::Parameters::curved_stop_amips, "--curved-stop-amips")
       .def_readwrite("max_curved_passes", &curvemesh::Parameters::max_curved_passes, "--max-curved-passes")
       .def_property(

@@ -47,7 +47,7 @@ using Curve = std::array<std::array<double, 2>, 4>;
 // default-constructed Mesh is empty (order 0, no nodes) and cannot be written.
 class CURVEMESH_API Mesh {
  public:
-  // 3: cubic triangles of 10 nodes and lines of 4; 1 (Parameters::linear): 3 and 2.
+  // Parameters::order: 3, cubic triangles of 10 nodes and lines of 4; 1, triangles of 3 and lines of 2.
   int order() const;
   // How many nodes: the length of nodes().
   std::size_t node_count() const;

@@ -42,7 +42,7 @@ struct CURVEMESH_API Parameters {
   double stop_amips = 10.0;      // --stop-amips: ... or once every triangle's AMIPS energy is at most this;
                                  // also the bound of both coarsenings (linear, and along the curves)
   // §4.2: curving.
-  bool linear = false;  // --linear: straight 3-node triangles instead of cubic 10-node ones
+  int order = 3;  // --order: the elements' order: 3 (cubic 10-node triangles) or 1 (straight 3-node; --linear)
   double curved_stop_amips =
       20.0;                    // --curved-stop-amips: step 4 stops once every curved triangle is at most this
   int max_curved_passes = 10;  // --max-curved-passes: ... or after this many passes

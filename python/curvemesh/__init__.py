@@ -10,7 +10,7 @@ arrays, as files, or as a meshio mesh.
     m.write("drawing.msh")                # the very file `curvemesh mesh` writes
 
 Options are the command line's long options with "_" for "-" (``mu``, ``epsilon``, ``eps_m``,
-``edge_length``, ``min_edge_length``, ``min_angle``, ``junction_angle``, ``linear``,
+``edge_length``, ``min_edge_length``, ``min_angle``, ``junction_angle``, ``order``, ``linear``,
 ``max_iterations``, ``stop_amips``, ``box_margin``, ``curved_stop_amips``,
 ``max_curved_passes``), and ``features=False`` for ``--no-features``; lengths are relative to
 the diagonal of the drawing's bounding box. The limits (``max_input_mb``, ``max_elements``,
@@ -45,7 +45,9 @@ _OPTIONS = {
     "min_angle": ("alpha_deg", float, "--min-angle"),
     "junction_angle": ("junction_angle_deg", float, "--junction-angle"),
     "features": ("features", bool, "--no-features"),
-    "linear": ("linear", bool, "--linear"),
+    "order": ("order", int, "--order"),
+    # linear=True is order=1, as --linear is --order 1.
+    "linear": (None, bool, "--linear"),
     "max_iterations": ("max_iterations", int, "--max-iterations"),
     "stop_amips": ("stop_amips", float, "--stop-amips"),
     "box_margin": ("box_margin_rel", float, "--box-margin"),
@@ -59,7 +61,9 @@ _OPTIONS = {
 }
 
 #: The options mesh() and mesh_curves() take, each with its default.
-OPTIONS = {name: getattr(_curvemesh.Parameters(), field) for name, (field, _, _) in _OPTIONS.items()}
+OPTIONS = {
+    name: getattr(_curvemesh.Parameters(), field) if field else False for name, (field, _, _) in _OPTIONS.items()
+}
 
 _LINE_TAG_NAMES = np.array(_curvemesh.LINE_TAG_NAMES)
 # The physical groups of curvemesh's .msh files (and of Mesh.to_meshio()).
@@ -92,6 +96,12 @@ def _parameters(function, options):
             if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
                 raise TypeError(f"{name} must be a number, not {type(value).__name__}")
             value = float(value)
+        if field is None:  # linear
+            if value and options.get("order", 1) != 1:
+                raise ValueError(f"linear=True is order=1, not order={options['order']}")
+            if value:
+                p.order = 1
+            continue
         setattr(p, field, value)
     p.validate()
     return p
@@ -275,7 +285,7 @@ def mesh(svg, **options):
     .poly file), or SVG text: a str that starts with "<" after leading white space. `options`
     are the command line's long options with "_" for "-":
 
-        mu, epsilon, eps_m, edge_length, min_edge_length, min_angle, junction_angle, linear,
+        mu, epsilon, eps_m, edge_length, min_edge_length, min_angle, junction_angle, order, linear,
         max_iterations, stop_amips, box_margin, curved_stop_amips, max_curved_passes,
         max_input_mb, max_elements, max_curves, max_triangles
 

@@ -70,7 +70,7 @@ int run_mesh(const MeshArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   pipeline::RunOptions run;
   if (!args.stop_after.empty()) run.stop_after = *pipeline::stage_named(args.stop_after);
-  if (args.parameters.linear && run.stop_after == pipeline::Stage::curve && !args.stop_after.empty()) {
+  if (args.parameters.order == 1 && run.stop_after == pipeline::Stage::curve && !args.stop_after.empty()) {
     say("--stop-after curve makes no sense with --linear");
     return kUsage;
   }

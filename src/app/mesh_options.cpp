@@ -95,8 +95,13 @@ void add_feature_options(CLI::App& cmd, pipeline::Parameters& p) {
 
 std::vector<const CLI::Option*> add_mesh_options(CLI::App& cmd, pipeline::Parameters& p, int& msh_version) {
   const std::size_t first = cmd.get_options().size();
-  cmd.add_flag("--linear", p.linear,
-               "make a linear mesh (straight-sided 3-node triangles) instead of a curved one");
+  cmd.add_option("--order", p.order,
+                 "the elements' order: 3 (curved, cubic 10-node triangles whose edges follow the primary curves) "
+                 "or 1 (straight 3-node triangles)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({1, 3}));
+  cmd.add_flag_callback("--linear", [&p] { p.order = 1; },
+                        "make a linear mesh (straight-sided 3-node triangles): --order 1");
   cmd.add_option("--msh-version", msh_version, "Gmsh file format: 41 (4.1) or 22 (2.2)")
       ->capture_default_str()
       ->transform(CLI::CheckedTransformer(

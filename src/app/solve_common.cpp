@@ -60,7 +60,7 @@ std::optional<fem::MeshedDrawing> mesh_for_solving(const SolveOptions& o, const 
   *exit_code = kOk;
   limit_memory(o.memory_limit_gb);
   pipeline::Parameters curved = o.parameters;
-  curved.linear = false;  // --linear solves on the straight map of the curved mesh
+  curved.order = 3;  // --linear solves on the straight map of the curved mesh
   pipeline::RunOptions run;
   run.warn = [&](const std::string& w) { warn(o.input, w); };
   run.regions = o.domain == "filled";  // the fills classified: meshed_drawing keeps them

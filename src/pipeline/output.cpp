@@ -139,7 +139,7 @@ MeshedDrawing meshed_drawing(const Result& r) {
 
 MeshedDrawing mesh_drawing(const Source& source, const Parameters& parameters) {
   Parameters curved = parameters;
-  curved.linear = false;
+  curved.order = 3;
   return meshed_drawing(run(source, curved));
 }
 

@@ -54,6 +54,7 @@ void Parameters::validate() const {
   within("--stop-amips", stop_amips, 2.0, 1e9);
   within("--curved-stop-amips", curved_stop_amips, 2.0, 1e9);
   if (max_curved_passes < 0) refuse("--max-curved-passes", max_curved_passes, "a non-negative number");
+  if (order != 1 && order != 3) refuse("--order", order, "1 or 3");
   positive("--max-input-mb", limits.max_input_mb);
   for (const auto& [option, value] : {std::pair{"--max-elements", limits.max_elements},
                                       std::pair{"--max-curves", limits.max_curves},
@@ -85,7 +86,7 @@ Resolved resolve(const Parameters& p, double diagonal) {
   r.optimize.max_iterations = p.max_iterations;
   r.optimize.stop_min_angle_deg = p.alpha_deg;  // the target min angle is α
   r.optimize.stop_max_amips = p.stop_amips;
-  r.optimize.curved_stop_amips = p.linear ? 0.0 : p.curved_stop_amips;
+  r.optimize.curved_stop_amips = p.order == 1 ? 0.0 : p.curved_stop_amips;
   r.curve.stop_amips = p.curved_stop_amips;
   r.curve.max_smoothing_passes = p.max_curved_passes;
   r.curve.coarsen_edge_length = l.edge;

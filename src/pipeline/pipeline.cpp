@@ -248,7 +248,7 @@ Result run_stages(const Source& source, const Parameters& parameters, const RunO
   r.name = source.name;
   r.parameters = parameters;
   const Stage last =
-      parameters.linear && options.stop_after == Stage::curve ? Stage::optimize : options.stop_after;
+      parameters.order == 1 && options.stop_after == Stage::curve ? Stage::optimize : options.stop_after;
   Json& stats = r.stats;
   const auto warn = [&](const std::string& w) {
     r.warnings.push_back(w);

@@ -102,7 +102,7 @@ struct Result {
   const mesh::TriMesh& corners() const { return curved ? curved->linear : linear; }
 };
 
-// Runs the stages up to options.stop_after (at most `optimize` when parameters.linear), then
+// Runs the stages up to options.stop_after (at most `optimize` when parameters.order is 1), then
 // classifies the mesh's faces when asked. Throws curvemesh::Error: invalid_parameters,
 // invalid_input when the drawing cannot be read, has nothing to mesh or leaves the domain empty,
 // internal when the mesh cannot be given out or a face's side of a filled element's outline

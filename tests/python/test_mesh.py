@@ -188,11 +188,12 @@ def test_version(run_cli):
 
 def test_options_and_defaults():
     assert set(curvemesh.OPTIONS) == {
-        "mu", "epsilon", "eps_m", "edge_length", "min_edge_length", "min_angle", "junction_angle", "linear",
+        "mu", "epsilon", "eps_m", "edge_length", "min_edge_length", "min_angle", "junction_angle", "order", "linear",
         "max_iterations", "stop_amips", "box_margin", "curved_stop_amips", "max_curved_passes", "features",
         "max_input_mb", "max_elements", "max_curves", "max_triangles",
     }
     assert curvemesh.OPTIONS["edge_length"] == 0.05 and curvemesh.OPTIONS["linear"] is False
+    assert curvemesh.OPTIONS["order"] == 3
     assert curvemesh.OPTIONS["max_curves"] == 500000 and curvemesh.OPTIONS["max_triangles"] == 2000000
 
 

@@ -134,7 +134,7 @@ TEST(Api, CurvedMeshArrays) {
 
 TEST(Api, LinearMeshArrays) {
   Parameters p;
-  p.linear = true;
+  p.order = 1;
   const Mesh m = mesh_file(kShapes, p);
   expect_well_formed(m, 1);
   EXPECT_EQ(m.stats_json().find("\"curve\""), std::string::npos);
@@ -154,7 +154,7 @@ TEST(Api, TargetEdgeLengthHoldsAwayFromFeatures) {
   const double d = 100 * std::sqrt(2.0);
   for (const double l : {0.01, 0.02, 0.05}) {
     Parameters p;
-    p.linear = true;
+    p.order = 1;
     p.edge_length_rel = l;
     const Mesh m = mesh_svg(svg, p);
     std::set<std::int64_t> on_features(m.lines().begin(), m.lines().end());
@@ -181,7 +181,7 @@ TEST(Api, SameMeshAndFilesAsTheCommandLine) {
   const ScratchDir dir;
   for (const bool linear : {false, true}) {
     Parameters p;
-    p.linear = linear;
+    p.order = linear ? 1 : 3;
     p.edge_length_rel = 0.04;
     const Mesh m = mesh_file(kShapes, p);
     const pipeline::Result r = pipeline::run(pipeline::Source::file(kShapes), p);
@@ -222,7 +222,7 @@ TEST(Api, LineCurvesNameTheCurveUnderEachLine) {
   for (const Curve& c : circle(3, 0.5, 0.7)) curves.push_back(c);
   for (const bool linear : {false, true}) {
     Parameters p;
-    p.linear = linear;
+    p.order = linear ? 1 : 3;
     const Mesh m = mesh_curves(curves, p);
     expect_well_formed(m, linear ? 1 : 3);
     EXPECT_NE(m.stats_json().find("<curves>"), std::string::npos);
@@ -310,7 +310,7 @@ TEST(Api, CheckCertifiesTheMeshAndItsFile) {
   const ScratchDir dir;
   for (const bool linear : {false, true}) {
     Parameters p;
-    p.linear = linear;
+    p.order = linear ? 1 : 3;
     const Mesh m = mesh_file(kExamples + "/square-with-hole.svg", p);
     const CheckReport r = check(m);
     EXPECT_EQ(r.order, linear ? 1 : 3);
@@ -376,7 +376,7 @@ TEST(Api, CheckFileFindsAnInvertedElement) {
 TEST(Api, WriteFailures) {
   const ScratchDir dir;
   Parameters p;
-  p.linear = true;
+  p.order = 1;
   const Mesh m = mesh_file(kExamples + "/square-with-hole.svg", p);
   auto [kind, message] = error_of([&] { m.write(dir / "no-such-folder/m.msh"); });
   EXPECT_EQ(kind, Error::Kind::output);

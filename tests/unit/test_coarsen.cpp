@@ -224,7 +224,7 @@ TEST(Coarsen, TheTargetLengthKeepsItsMeaningForSmallAndLargeL) {
       SCOPED_TRACE((linear ? "linear, l = " : "curved, l = ") + std::to_string(l));
       Parameters p;
       p.edge_length_rel = l;
-      p.linear = linear;
+      p.order = linear ? 1 : 3;
       const pipeline::Result r = pipeline::run(pipeline::Source::svg(two_rings(), "two rings"), p);
       int count = 0;
       const double mean = mean_edge_away_from_features(r.corners(), &count);

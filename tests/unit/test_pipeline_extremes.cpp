@@ -71,7 +71,7 @@ TEST(PipelineExtremes, SizesAtTheEndsOfTheRange) {
     const Curves curves = moved(kCrossing, {0, 0}, scale);
     expect_certified(pipeline::run(pipeline::Source::beziers(curves, "scaled"), {}));
     pipeline::Parameters linear;
-    linear.linear = true;
+    linear.order = 1;
     expect_certified(pipeline::run(pipeline::Source::beziers(curves, "scaled"), linear));
   }
   const auto error_of = [](double scale) -> std::string {

@@ -272,7 +272,7 @@ TEST(Regions, LoneCircleAreaIsItsCurvesArea) {
   EXPECT_EQ(r.stats["regions"][1]["triangles"].get<int>(), regions[1].triangles);
   // Straight triangles cannot: the linear mesh's circle region misses area.
   Parameters linear;
-  linear.linear = true;
+  linear.order = 1;
   const pipeline::Result s = mesh_painted(doc(R"(<circle id="c" cx="5" cy="5" r="3" fill="#336699"/>)"),
                                           regions::Domain::box, true, linear);
   EXPECT_GT(std::abs(s.painted->regions[1].area - want), 1e-4 * want);
