@@ -10,6 +10,7 @@
 #include "base/limits.hpp"
 #include "features/poly_input.hpp"
 #include "io/curved_mesh.hpp"
+#include "pipeline/output.hpp"
 #include "svg/drawing_size.hpp"
 #include "svg/error.hpp"
 #include "svg/reader.hpp"
@@ -317,6 +318,7 @@ Result run_stages(const Source& source, const Parameters& parameters, const RunO
                           {"method", triangulate::method_name(tri.stats.method)}};
   r.box = tri.box;
   r.triangulate_stats = tri.stats;
+  r.shared = std::move(tri.shared);
   r.linear = std::move(tri.mesh);
   r.constraints = triangulate::invariant_inputs(f, r.box);
   r.last = Stage::triangulate;
@@ -376,7 +378,10 @@ Result run_stages(const Source& source, const Parameters& parameters, const RunO
 
 Result run(const Source& source, const Parameters& parameters, const RunOptions& options) {
   try {
-    return run_stages(source, parameters, options);
+    Result r = run_stages(source, parameters, options);
+    // The groups a solver selects by, with their ids (regions/groups.hpp), as the .msh holds them.
+    if (r.last >= Stage::triangulate) r.stats["groups"] = groups_json(high_order_mesh(r));
+    return r;
   } catch (const base::LimitExceeded& e) {
     throw invalid(source.name + ": " + e.what());
   }
