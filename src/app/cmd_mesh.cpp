@@ -26,7 +26,7 @@ namespace {
 struct MeshArgs {
   std::string input, output_msh, output_svg, output_vtu, output_stats, stop_after, domain = "box";
   bool verbose = false, quiet = false, regions = false;
-  int msh_version = 41;
+  io::MshOptions msh;
   double memory_limit_gb = 0;
   pipeline::Parameters parameters;
 };
@@ -58,7 +58,7 @@ int write_mesh(const MeshArgs& args, pipeline::Result& r) {
     // The plain high-order mesh, made once for both files (what pipeline::write_msh and
     // write_vtu write).
     const io::HighOrderMesh mesh = pipeline::high_order_mesh(r);
-    out.add(args.output_msh, io::msh_string(mesh, io::MshOptions{args.msh_version}));
+    out.add(args.output_msh, io::msh_string(mesh, args.msh));
     if (!args.output_vtu.empty()) out.add(args.output_vtu, io::vtu_string(mesh, pipeline::cell_data(r)));
     if (!args.output_svg.empty()) out.add(args.output_svg, pipeline::mesh_svg(r));
     r.stats["seconds"]["write"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -115,8 +115,11 @@ Runner add_mesh_command(CLI::App& app) {
       "processing (paper §4), an exact constrained triangulation of the bounding box and every feature, "
       "quality optimization (§4.1), and curving (§4.2): cubic 10-node triangles whose edges follow the "
       "primary curves, each certified to have a positive Jacobian. Writes a Gmsh .msh file with the "
-      "triangles and the feature edges as line elements in physical groups primary, secondary and "
-      "boundary; with --linear, straight 3-node triangles. Prints one line on success (what was written, "
+      "triangles and the feature edges as line elements in physical groups: primary, secondary and boundary "
+      "(ids 1-3, what a line lies on), border (5, the border of the meshed domain) and one per drawn element "
+      "(6 on, named by its id, else TAG#INDEX; a side two shapes share is in both); the triangles in domain "
+      "(4), or with --regions one group per region, numbered after the lines' so that no id is used twice; "
+      "with --linear, straight 3-node triangles. Prints one line on success (what was written, "
       "triangles, worst AMIPS energy, smallest scaled Jacobian, seconds). Lengths are relative to the "
       "diagonal d of the drawing's bounding box.\n"
       "Every output is written whole or not at all, never over the input: when one of them cannot be "
@@ -135,8 +138,8 @@ Runner add_mesh_command(CLI::App& app) {
       "--regions", args->regions,
       "tag the triangles by what the drawing paints on them, as a browser does (fill, fill-rule, transforms, "
       "<use>, CSS; the topmost filled element wins): one physical surface per visible element, named by its id "
-      "(else TAG#INDEX, its index in the document), and 'background' where nothing is filled; --stats lists "
-      "them with fill, triangles and area; --svg fills each triangle with its element's colour. Opacity, "
+      "(else TAG#INDEX, its index in the document), and 'background' where nothing is filled, with the same ids "
+      "whatever --domain keeps; --stats lists them with fill, triangles and area; --svg fills each triangle with its element's colour. Opacity, "
       "gradients and patterns do not change what covers what; clip paths and masks are ignored (with a "
       "warning). The line closing an open filled subpath becomes a feature");
   cmd->add_option("--domain", args->domain,
@@ -146,13 +149,14 @@ Runner add_mesh_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"box", "filled", "evenodd"}));
   cmd->add_option("--stats", args->output_stats,
-                  "write statistics as JSON: counts, min angle, max and mean AMIPS, seconds per stage");
+                  "write statistics as JSON: counts, min angle, max and mean AMIPS, seconds per stage, and the "
+                  "physical groups (dim, id, name, and lines and length or triangles and area)");
   cmd->add_option(
          "--stop-after", args->stop_after,
          "last stage to run: triangulate (the exact triangulation, unoptimized), optimize (the linear "
          "mesh) or curve (default; optimize with --linear)")
       ->check(CLI::IsMember({"triangulate", "optimize", "curve"}));
-  add_mesh_options(*cmd, args->parameters, args->msh_version);
+  add_mesh_options(*cmd, args->parameters, args->msh);
   add_memory_limit_option(*cmd, args->memory_limit_gb);
   cmd->add_flag("-v,--verbose", args->verbose,
                 "report each optimization pass on stderr (triangles, min angle, max AMIPS)");

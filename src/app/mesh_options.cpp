@@ -93,7 +93,7 @@ void add_feature_options(CLI::App& cmd, pipeline::Parameters& p) {
   add_limit_options(cmd, p.limits);
 }
 
-std::vector<const CLI::Option*> add_mesh_options(CLI::App& cmd, pipeline::Parameters& p, int& msh_version) {
+std::vector<const CLI::Option*> add_mesh_options(CLI::App& cmd, pipeline::Parameters& p, io::MshOptions& msh) {
   const std::size_t first = cmd.get_options().size();
   cmd.add_option("--order", p.order,
                  "the elements' order: 3 (curved, cubic 10-node triangles whose edges follow the primary curves) "
@@ -102,10 +102,16 @@ std::vector<const CLI::Option*> add_mesh_options(CLI::App& cmd, pipeline::Parame
       ->check(CLI::IsMember({1, 3}));
   cmd.add_flag_callback("--linear", [&p] { p.order = 1; },
                         "make a linear mesh (straight-sided 3-node triangles): --order 1");
-  cmd.add_option("--msh-version", msh_version, "Gmsh file format: 41 (4.1) or 22 (2.2)")
+  cmd.add_option("--msh-version", msh.version,
+                 "Gmsh file format: 41 (4.1) or 22 (2.2); a line in several physical groups is one element of an "
+                 "entity with several physical tags in 4.1, one element per group in 2.2")
       ->capture_default_str()
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, int>{{"4.1", 41}, {"41", 41}, {"2.2", 22}, {"22", 22}}));
+  cmd.add_flag("--msh-boundary-only", msh.boundary_only,
+               "the .msh gets only the lines on the border of the meshed domain, each in one physical group: the "
+               "drawn element it lies on (the first drawn, when several), else boundary (a side of the box). For deal.II, whose GridIn::read_msh refuses a line inside the mesh or in two "
+               "groups; with --linear, as it reads straight triangles only");
   add_feature_options(cmd, p);
   cmd.add_option("--max-iterations", p.max_iterations, "optimization passes at most")
       ->capture_default_str()

@@ -4,6 +4,7 @@
 // `mesh` and `batch`. Checked again, all together, by pipeline::Parameters::validate.
 #include <vector>
 
+#include "io/msh_writer.hpp"
 #include "pipeline/parameters.hpp"
 
 namespace CLI {
@@ -23,10 +24,11 @@ void add_memory_limit_option(CLI::App& cmd, double& gigabytes);
 // Applies it; a run that reaches it ends with exit 1 ("out of memory", main.cpp).
 void limit_memory(double gigabytes);
 
-// --linear, --msh-version, the feature options, --max-iterations, --stop-amips, --box-margin,
-// --curved-stop-amips, --max-curved-passes. Returns the options it registered, in order.
+// --order, --linear, --msh-version, --msh-boundary-only, the feature options, --max-iterations,
+// --stop-amips, --box-margin, --curved-stop-amips, --max-curved-passes. Returns the options it
+// registered, in order.
 std::vector<const CLI::Option*> add_mesh_options(CLI::App& cmd, pipeline::Parameters& parameters,
-                                                 int& msh_version);
+                                                 io::MshOptions& msh);
 
 // Whether the parameters are consistent; if not, says why on stderr.
 bool parameters_valid(const pipeline::Parameters& parameters);
