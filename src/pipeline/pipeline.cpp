@@ -234,7 +234,9 @@ Source Source::curves(svg::FeatureSoup soup, std::string name) {
 
 Source Source::beziers(const std::vector<std::array<geometry::Vec2, 4>>& curves, std::string name) {
   svg::FeatureSoup soup;
-  soup.sources.push_back({"path", "", 0, 1});
+  // Numbered as the reader numbers the one <path> of a document that draws them (the root is
+  // element 0): the same file, the same group name "path#1".
+  soup.sources.push_back({"path", "", 1, 1});
   soup.curves.reserve(curves.size());
   for (const auto& p : curves)
     soup.curves.push_back({geometry::CubicBezier(p[0], p[1], p[2], p[3]), 0, {}, {}, {}, {}});
