@@ -96,10 +96,16 @@ void add_feature_options(CLI::App& cmd, pipeline::Parameters& p) {
 std::vector<const CLI::Option*> add_mesh_options(CLI::App& cmd, pipeline::Parameters& p, int& msh_version) {
   const std::size_t first = cmd.get_options().size();
   cmd.add_option("--order", p.order,
-                 "the elements' order: 3 (curved, cubic 10-node triangles whose edges follow the primary curves) "
-                 "or 1 (straight 3-node triangles)")
+                 "the elements' order: 3 (curved, cubic 10-node triangles whose edges follow the primary curves), "
+                 "2 (curved, quadratic 6-node triangles whose edges stay within --curve-tolerance of the primary "
+                 "curves) or 1 (straight 3-node triangles)")
       ->capture_default_str()
-      ->check(CLI::IsMember({1, 3}));
+      ->check(CLI::IsMember({1, 2, 3}));
+  cmd.add_option("--curve-tolerance", p.curve_tolerance_rel,
+                 "with --order 2: the largest distance from an edge on a primary curve to the curve, relative to "
+                 "d; an edge farther is split (0: epsilon)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   cmd.add_flag_callback("--linear", [&p] { p.order = 1; },
                         "make a linear mesh (straight-sided 3-node triangles): --order 1");
   cmd.add_option("--msh-version", msh_version, "Gmsh file format: 41 (4.1) or 22 (2.2)")

@@ -54,7 +54,9 @@ void Parameters::validate() const {
   within("--stop-amips", stop_amips, 2.0, 1e9);
   within("--curved-stop-amips", curved_stop_amips, 2.0, 1e9);
   if (max_curved_passes < 0) refuse("--max-curved-passes", max_curved_passes, "a non-negative number");
-  if (order != 1 && order != 3) refuse("--order", order, "1 or 3");
+  if (order < 1 || order > 3) refuse("--order", order, "1, 2 or 3");
+  if (!(std::isfinite(curve_tolerance_rel) && curve_tolerance_rel >= 0))
+    refuse("--curve-tolerance", curve_tolerance_rel, "a non-negative number");
   positive("--max-input-mb", limits.max_input_mb);
   for (const auto& [option, value] : {std::pair{"--max-elements", limits.max_elements},
                                       std::pair{"--max-curves", limits.max_curves},
@@ -87,6 +89,11 @@ Resolved resolve(const Parameters& p, double diagonal) {
   r.optimize.stop_min_angle_deg = p.alpha_deg;  // the target min angle is α
   r.optimize.stop_max_amips = p.stop_amips;
   r.optimize.curved_stop_amips = p.order == 1 ? 0.0 : p.curved_stop_amips;
+  r.curve.order = p.order == 2 ? 2 : 3;
+  // An order-2 edge only approximates its curve: within the secondary features' envelope ε unless
+  // told otherwise, the distance every other feature of the mesh is kept within.
+  r.curve.tolerance = (p.curve_tolerance_rel > 0 ? p.curve_tolerance_rel : p.epsilon_rel) * r.d;
+  r.curve.min_split_length = l.min_edge;
   r.curve.stop_amips = p.curved_stop_amips;
   r.curve.max_smoothing_passes = p.max_curved_passes;
   r.curve.coarsen_edge_length = l.edge;
