@@ -11,7 +11,7 @@ arrays, as files, or as a meshio mesh.
 
 Options are the command line's long options with "_" for "-" (``mu``, ``epsilon``, ``eps_m``,
 ``edge_length``, ``min_edge_length``, ``min_angle``, ``junction_angle``, ``order``, ``linear``,
-``max_iterations``, ``stop_amips``, ``box_margin``, ``curved_stop_amips``,
+``curve_tolerance``, ``max_iterations``, ``stop_amips``, ``box_margin``, ``curved_stop_amips``,
 ``max_curved_passes``), and ``features=False`` for ``--no-features``; lengths are relative to
 the diagonal of the drawing's bounding box. The limits (``max_input_mb``, ``max_elements``,
 ``max_curves``, ``max_triangles``) bound what a drawing may cost: beyond one, ValueError names it.
@@ -48,6 +48,7 @@ _OPTIONS = {
     "order": ("order", int, "--order"),
     # linear=True is order=1, as --linear is --order 1.
     "linear": (None, bool, "--linear"),
+    "curve_tolerance": ("curve_tolerance_rel", float, "--curve-tolerance"),
     "max_iterations": ("max_iterations", int, "--max-iterations"),
     "stop_amips": ("stop_amips", float, "--stop-amips"),
     "box_margin": ("box_margin_rel", float, "--box-margin"),
@@ -119,9 +120,9 @@ def _path(path):
 class Mesh:
     """A finished triangle mesh, as mesh() and mesh_curves() return it.
 
-    Curved (order 3): cubic triangles of 10 nodes and feature lines of 4, every triangle's
-    Jacobian certified positive. Linear (``linear=True``, order 1): triangles of 3 nodes, lines
-    of 2. Coordinates are in the drawing's units (SVG user space: y points down).
+    Curved (order 3): cubic triangles of 10 nodes and feature lines of 4; or (``order=2``)
+    quadratic triangles of 6 nodes and lines of 3; every triangle's Jacobian certified positive.
+    Linear (``order=1``, ``linear=True``): triangles of 3 nodes, lines of 2. Coordinates are in the drawing's units (SVG user space: y points down).
 
     The arrays are read-only and made once, on first use.
     """
@@ -145,7 +146,8 @@ class Mesh:
 
     @property
     def order(self):
-        """3 for a curved mesh (10-node triangles), 1 for a linear one (3-node triangles)."""
+        """3 for a cubic mesh (10-node triangles), 2 for a quadratic one (6-node triangles), 1 for a
+        linear one (3-node triangles)."""
         return self._mesh.order
 
     @property
@@ -155,23 +157,25 @@ class Mesh:
 
     @property
     def triangles(self):
-        """Node indices per triangle: int64 array (M, 10), or (M, 3) when linear.
+        """Node indices per triangle: int64 array (M, 10), (M, 6) when quadratic, (M, 3) when
+        linear.
 
-        Gmsh's node order: the three corners counter-clockwise (as seen with y up), then two
-        nodes on each edge 0-1, 1-2, 2-0 from its first corner on, then the centre.
+        Gmsh's node order: the three corners counter-clockwise (as seen with y up), then the
+        nodes on each edge 0-1, 1-2, 2-0 from its first corner on (two, or the middle one when
+        quadratic), then the centre (cubic).
         """
         return self._array("triangles", self._mesh.triangles)
 
     @property
     def lines(self):
-        """Node indices per feature line: int64 array (K, 4), or (K, 2) when linear; both ends
-        first, then the inner nodes (Gmsh's order)."""
+        """Node indices per feature line: int64 array (K, order + 1): (K, 4), (K, 3) when
+        quadratic, (K, 2) when linear; both ends first, then the inner nodes (Gmsh's order)."""
         return self._array("lines", self._mesh.lines)
 
     @property
     def line_tags(self):
         """What each feature line lies on: a str array (K,) of "primary" (a curve of the
-        drawing, reproduced by curved edges), "secondary" (a piece of a curve kept within
+        drawing, followed by curved edges), "secondary" (a piece of a curve kept within
         epsilon by straight edges) or "boundary" (a side of the meshed box)."""
         return self._array("line_tags", lambda: _LINE_TAG_NAMES[self._mesh.line_tag_codes()])
 
@@ -196,7 +200,7 @@ class Mesh:
 
     def write(self, path, msh_version=41):
         """Writes the mesh to `path` (str or os.PathLike) by its extension: ".msh" (Gmsh ASCII,
-        ``msh_version`` 41 for 4.1 or 22 for 2.2), ".vtu" (VTK Lagrange triangles) or ".svg" (a
+        ``msh_version`` 41 for 4.1 or 22 for 2.2), ".vtu" (VTK quadratic or Lagrange triangles) or ".svg" (a
         drawing of the mesh). The file is byte for byte the one the command line writes for the
         same drawing and options, written whole or not at all. Raises OSError when it cannot be
         written or the extension is none of these, ValueError for a path with a NUL or one that is
@@ -210,21 +214,23 @@ class Mesh:
 
         Points are (N, 3) with z = 0 (what meshio's readers give and its writers take). Cells come
         as in the file: one block of "line4" per line tag present (primary, secondary, boundary;
-        each block in the order of ``lines``), then one of "triangle10" ("line" and "triangle"
-        when linear); meshio's node order for these cells is Gmsh's, the order of ``triangles``
-        and ``lines``. Cell data "gmsh:physical" holds each cell's physical group (1 primary, 2
+        each block in the order of ``lines``), then one of "triangle10" ("line3" and "triangle6"
+        when quadratic, "line" and "triangle" when linear); meshio's node order for these cells is
+        Gmsh's, the order of ``triangles`` and ``lines``. Cell data "gmsh:physical" holds each cell's physical group (1 primary, 2
         secondary, 3 boundary, 4 domain, named in field_data) and "gmsh:geometrical" its entity;
         point data "gmsh:dim_tags" the nodes' entities, classified as Gmsh does (those of a
         feature line on its curve), so that meshio writes Gmsh 4.1 files of it that it reads back
         (write()'s own files put every node on the surface). Gmsh 2.2 needs none of it.
 
-        meshio cannot write "triangle10" to VTU: for a curved VTU, use write("mesh.vtu").
+        meshio cannot write "triangle10" to VTU: for a cubic VTU, use write("mesh.vtu").
         """
         import meshio
 
         points = np.zeros((len(self.nodes), 3))
         points[:, :2] = self.nodes
-        line_type, triangle_type = ("line4", "triangle10") if self.order == 3 else ("line", "triangle")
+        line_type, triangle_type = {3: ("line4", "triangle10"), 2: ("line3", "triangle6"), 1: ("line", "triangle")}[
+            self.order
+        ]
         codes = self._mesh.line_tag_codes()
         cells, physical, geometrical, field_data = [], [], [], {}
         # Lines by physical group, ascending; each group is one curve entity tagged by the group.
@@ -286,8 +292,8 @@ def mesh(svg, **options):
     are the command line's long options with "_" for "-":
 
         mu, epsilon, eps_m, edge_length, min_edge_length, min_angle, junction_angle, order, linear,
-        max_iterations, stop_amips, box_margin, curved_stop_amips, max_curved_passes,
-        max_input_mb, max_elements, max_curves, max_triangles
+        curve_tolerance, max_iterations, stop_amips, box_margin, curved_stop_amips,
+        max_curved_passes, max_input_mb, max_elements, max_curves, max_triangles
 
     and features (False is --no-features); see curvemesh.OPTIONS for their defaults. Raises
     ValueError with the command line's message when the drawing cannot be read or an option's

@@ -83,7 +83,7 @@ double distance_to(const Curve& c, const std::array<double, 2>& q) {
 }
 
 void expect_well_formed(const Mesh& m, int order) {
-  const int per_triangle = order == 3 ? 10 : 3, per_line = order == 3 ? 4 : 2;
+  const int per_triangle = (order + 1) * (order + 2) / 2, per_line = order + 1;
   EXPECT_EQ(m.order(), order);
   EXPECT_EQ(m.nodes_per_triangle(), per_triangle);
   EXPECT_EQ(m.nodes_per_line(), per_line);
@@ -138,6 +138,22 @@ TEST(Api, LinearMeshArrays) {
   const Mesh m = mesh_file(kShapes, p);
   expect_well_formed(m, 1);
   EXPECT_EQ(m.stats_json().find("\"curve\""), std::string::npos);
+  EXPECT_NE(m.stats_json().find("\"max_edge_distance\""), std::string::npos);
+}
+
+TEST(Api, QuadraticMeshArrays) {
+  Parameters p;
+  p.order = 2;
+  const Mesh m = mesh_file(kShapes, p);
+  expect_well_formed(m, 2);
+  const std::set<LineTag> tags(m.line_tags().begin(), m.line_tags().end());
+  EXPECT_TRUE(tags.count(LineTag::primary));
+  EXPECT_NE(m.stats_json().find("\"tolerance_splits\""), std::string::npos);
+  p.order = 4;
+  EXPECT_EQ(error_of([&] { mesh_file(kShapes, p); }).first, Error::Kind::invalid_parameters);
+  p.order = 2;
+  p.curve_tolerance_rel = -1;
+  EXPECT_EQ(error_of([&] { mesh_file(kShapes, p); }).first, Error::Kind::invalid_parameters);
 }
 
 // -l means what it says: away from features the edges are about l long. Two short segments at
@@ -308,12 +324,12 @@ TEST(Api, CurvesThatAreNotFiniteAreRefused) {
 
 TEST(Api, CheckCertifiesTheMeshAndItsFile) {
   const ScratchDir dir;
-  for (const bool linear : {false, true}) {
+  for (const int order : {3, 2, 1}) {
     Parameters p;
-    p.order = linear ? 1 : 3;
+    p.order = order;
     const Mesh m = mesh_file(kExamples + "/square-with-hole.svg", p);
     const CheckReport r = check(m);
-    EXPECT_EQ(r.order, linear ? 1 : 3);
+    EXPECT_EQ(r.order, order);
     EXPECT_EQ(r.triangles, m.triangle_count());
     EXPECT_EQ(r.invalid, 0u);
     EXPECT_EQ(r.undecided, 0u);
