@@ -377,6 +377,26 @@ TEST(Api, CheckFileFindsAnInvertedElement) {
   EXPECT_EQ(straight.invalid, 0u);
   EXPECT_GT(straight.min_scaled_jacobian, 0.99);
 
+  // Quadratic triangles, decided on their own degree-2 determinant: straight, folded (edge 0-1's
+  // middle beyond the opposite corner), and positive although a Bernstein coefficient is negative
+  // (tests/unit/test_p2_triangle.cpp's element, which only subdivision decides).
+  const auto write_p2 = [&](const std::string& name, const std::array<std::array<double, 2>, 6>& nodes) {
+    std::ofstream f(dir / name);
+    f << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n6\n";
+    for (int i = 0; i < 6; ++i) f << i + 1 << " " << nodes[i][0] << " " << nodes[i][1] << " 0\n";
+    f << "$EndNodes\n$Elements\n1\n1 9 2 4 1 1 2 3 4 5 6\n$EndElements\n";
+  };
+  write_p2("p2-straight.msh", {{{0, 0}, {1, 0}, {0, 1}, {0.5, 0}, {0.5, 0.5}, {0, 0.5}}});
+  write_p2("p2-folded.msh", {{{0, 0}, {1, 0}, {0, 1}, {0.5, 1.5}, {0.5, 0.5}, {0, 0.5}}});
+  write_p2("p2-subtle.msh", {{{0, 0}, {40, 0}, {0, 40}, {18, 9}, {15, 22}, {-7, 10}}});
+  for (const auto& [name, invalid] : {std::pair{"p2-straight.msh", 0u}, {"p2-folded.msh", 1u}, {"p2-subtle.msh", 0u}}) {
+    const CheckReport r = check_file(dir / name);
+    EXPECT_EQ(r.order, 2) << name;
+    EXPECT_EQ(r.invalid, invalid) << name;
+    EXPECT_EQ(r.undecided, 0u) << name;
+    EXPECT_EQ(r.min_scaled_jacobian > 0, invalid == 0) << name;
+  }
+
   {
     std::ofstream f(dir / "broken.msh");
     f << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n";
