@@ -122,7 +122,8 @@ class Mesh:
 
     Curved (order 3): cubic triangles of 10 nodes and feature lines of 4; or (``order=2``)
     quadratic triangles of 6 nodes and lines of 3; every triangle's Jacobian certified positive.
-    Linear (``order=1``, ``linear=True``): triangles of 3 nodes, lines of 2. Coordinates are in the drawing's units (SVG user space: y points down).
+    Linear (``order=1``, ``linear=True``): triangles of 3 nodes, lines of 2. Coordinates are in
+    the drawing's units (SVG user space: y points down).
 
     The arrays are read-only and made once, on first use.
     """
