@@ -40,10 +40,10 @@ std::string ellipses(int n, unsigned seed) {
 
 void BM_Classify(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  pipeline::RunOptions options;
-  options.regions = true;  // reads the fills and closes what they fill, as `mesh --regions` does
+  Parameters p;
+  p.regions = true;  // reads the fills and closes what they fill, as `mesh --regions` does
   const auto start = std::chrono::steady_clock::now();
-  const pipeline::Result r = pipeline::run(pipeline::Source::svg(ellipses(n, 11), "<ellipses>"), {}, options);
+  const pipeline::Result r = pipeline::run(pipeline::Source::svg(ellipses(n, 11), "<ellipses>"), p);
   const double mesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const io::HighOrderMesh whole = io::curved_mesh(*r.curved);
   regions::ClassifyOptions c;

@@ -68,6 +68,48 @@ std::vector<curvemesh::Curve> curves_of(
   return curves;
 }
 
+const char* kind_name(curvemesh::ParameterOption::Kind kind) {
+  switch (kind) {
+    case curvemesh::ParameterOption::Kind::number:
+      return "number";
+    case curvemesh::ParameterOption::Kind::integer:
+      return "integer";
+    case curvemesh::ParameterOption::Kind::flag:
+      return "flag";
+    case curvemesh::ParameterOption::Kind::choice:
+      return "choice";
+  }
+  return "?";
+}
+
+py::list option_dicts() {
+  py::list out;
+  const curvemesh::Parameters defaults;
+  for (const curvemesh::ParameterOption& o : curvemesh::parameter_options()) {
+    py::dict d;
+    d["python"] = o.python;
+    d["option"] = o.option;
+    d["symbol"] = o.symbol;
+    d["kind"] = kind_name(o.kind);
+    d["min"] = o.min;
+    d["max"] = o.max;
+    d["min_open"] = o.min_open;
+    py::list choices;
+    for (const char* c : o.choices) choices.append(c);
+    d["choices"] = choices;
+    d["default"] = o.get(defaults);
+    d["help"] = o.help;
+    out.append(d);
+  }
+  return out;
+}
+
+curvemesh::ParameterOption option_named(const std::string& python) {
+  for (const curvemesh::ParameterOption& o : curvemesh::parameter_options())
+    if (python == o.python) return o;
+  throw py::key_error(python);
+}
+
 py::dict report_dict(const curvemesh::CheckReport& r) {
   py::dict d;
   d["order"] = r.order;
@@ -111,37 +153,25 @@ PYBIND11_MODULE(_curvemesh, m) {
   m.attr("LINE_TAG_NAMES") = names;
 
   py::class_<curvemesh::Parameters>(m, "Parameters",
-                                    "The method's parameters (curvemesh::Parameters), named as in C++.")
+                                    "The parameters (curvemesh::Parameters); fields through get/set_parameter.")
       .def(py::init<>())
-      .def_readwrite("mu_rel", &curvemesh::Parameters::mu_rel, "--mu")
-      .def_readwrite("epsilon_rel", &curvemesh::Parameters::epsilon_rel, "--epsilon")
-      .def_readwrite("eps_m_rel", &curvemesh::Parameters::eps_m_rel, "--eps-m")
-      .def_readwrite("alpha_deg", &curvemesh::Parameters::alpha_deg, "--min-angle")
-      .def_readwrite("edge_length_rel", &curvemesh::Parameters::edge_length_rel, "-l, --edge-length")
-      .def_readwrite("min_edge_length_rel", &curvemesh::Parameters::min_edge_length_rel, "--min-edge-length")
-      .def_readwrite("junction_angle_deg", &curvemesh::Parameters::junction_angle_deg, "--junction-angle")
-      .def_readwrite("features", &curvemesh::Parameters::features, "false: --no-features")
-      .def_readwrite("box_margin_rel", &curvemesh::Parameters::box_margin_rel, "--box-margin")
-      .def_readwrite("max_iterations", &curvemesh::Parameters::max_iterations, "--max-iterations")
-      .def_readwrite("stop_amips", &curvemesh::Parameters::stop_amips, "--stop-amips")
-      .def_readwrite("order", &curvemesh::Parameters::order, "--order (1: --linear)")
-      .def_readwrite("curve_tolerance_rel", &curvemesh::Parameters::curve_tolerance_rel, "--curve-tolerance")
-      .def_readwrite("curved_stop_amips", &curvemesh::Parameters::curved_stop_amips, "--curved-stop-amips")
-      .def_readwrite("max_curved_passes", &curvemesh::Parameters::max_curved_passes, "--max-curved-passes")
-      .def_property(
-          "max_input_mb", [](const curvemesh::Parameters& p) { return p.limits.max_input_mb; },
-          [](curvemesh::Parameters& p, double v) { p.limits.max_input_mb = v; }, "--max-input-mb (limits)")
-      .def_property(
-          "max_elements", [](const curvemesh::Parameters& p) { return p.limits.max_elements; },
-          [](curvemesh::Parameters& p, std::size_t v) { p.limits.max_elements = v; }, "--max-elements (limits)")
-      .def_property(
-          "max_curves", [](const curvemesh::Parameters& p) { return p.limits.max_curves; },
-          [](curvemesh::Parameters& p, std::size_t v) { p.limits.max_curves = v; }, "--max-curves (limits)")
-      .def_property(
-          "max_triangles", [](const curvemesh::Parameters& p) { return p.limits.max_triangles; },
-          [](curvemesh::Parameters& p, std::size_t v) { p.limits.max_triangles = v; }, "--max-triangles (limits)")
       .def("validate", &curvemesh::Parameters::validate,
            "Raises ValueError naming the first inconsistent parameter by its command-line option.");
+  m.def("parameter_options", &option_dicts,
+        "Every option of Parameters as the command line defines it (curvemesh::parameter_options()): a list of "
+        "dicts with python, option, symbol, kind, min, max, min_open, choices, default, help.");
+  m.def(
+      "set_parameter",
+      [](curvemesh::Parameters& p, const std::string& name, double value) {
+        const curvemesh::ParameterOption& o = option_named(name);
+        o.check(value);  // before the field's type holds it: -1 is no count
+        o.set(p, value);
+      },
+      "Sets the option with this Python name to a number (a flag 0 or 1, a choice its index); ValueError, "
+      "with the library's message, for a value outside its range.");
+  m.def(
+      "get_parameter", [](const curvemesh::Parameters& p, const std::string& name) { return option_named(name).get(p); },
+      "The option with this Python name as a number.");
 
   py::class_<curvemesh::Mesh>(m, "Mesh", "A finished mesh (curvemesh::Mesh); curvemesh.Mesh wraps it.")
       .def_property_readonly("order", &curvemesh::Mesh::order, "3 (cubic), 2 (quadratic) or 1 (linear).")

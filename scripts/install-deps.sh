@@ -8,7 +8,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   # libraries
   libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
-  libpugixml-dev libcli11-dev nlohmann-json3-dev libtbb-dev libsuitesparse-dev libpng-dev
+  libpugixml-dev libcli11-dev nlohmann-json3-dev libtbb-dev libsuitesparse-dev libpng-dev libhdf5-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # fuzzing (libFuzzer with ASan/UBSan)
@@ -17,6 +17,8 @@ packages=(
   pybind11-dev python3-dev python3-pytest
   # independent readers used by the tests
   python3 python3-numpy python3-svgelements python3-meshio python3-gmsh librsvg2-bin
+  # a real solver on the meshes (the FEniCSx test): dolfinx reads the .msh and the XDMF
+  python3-dolfinx
   # the drawings the corpus tests and scripts read (~8,100 SVGs, 180 MB)
   openclipart-svg
   # peak-memory measurement in the corpus scripts

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "curvemesh/export.hpp"
 
@@ -20,6 +21,13 @@ struct CURVEMESH_API Limits {
   std::size_t max_curves = 500'000;      // --max-curves: cubic curves read, after <use> and path data
   std::size_t max_triangles = 2'000'000;  // --max-triangles: triangles of the mesh at any stage
 };
+
+// What part of the meshed box a run gives out: all of it, what the drawing's filled elements cover
+// (the shape as it is seen), or the even-odd inside of its curves.
+enum class Domain { box, filled, evenodd };
+
+// The last stage a run makes: the exact triangulation, the optimized linear mesh, or the curved one.
+enum class StopAfter { triangulate, optimize, curve };
 
 // The method's parameters with the paper's symbols and defaults (TriWild, Hu et al. 2019: §4,
 // §4.1, §4.2). Lengths are relative to d, the diagonal of the drawing's bounding box; each is
@@ -50,12 +58,52 @@ struct CURVEMESH_API Parameters {
       20.0;                    // --curved-stop-amips: step 4 stops once every curved triangle is at most this
   int max_curved_passes = 10;  // --max-curved-passes: ... or after this many passes
 
+  // Not the method's: what the run gives out.
+  bool regions = false;                     // --regions: triangles tagged by the element painted on them
+  Domain domain = Domain::box;              // --domain: the part of the box meshed
+  StopAfter stop_after = StopAfter::curve;  // --stop-after: the last stage (optimize when order is 1)
+
   Limits limits;  // not the method's: bounds on what a drawing may cost
 
   // Throws Error (Error::Kind::invalid_parameters) naming the first inconsistent parameter by
   // its command-line option, e.g. "--epsilon (0.0005) must be at least --mu (0.001)".
   void validate() const;
 };
+
+// One field of Parameters as every interface spells it: the command line's option, Python's
+// keyword, the paper's symbol, its range and its help. The command line registers its options from
+// these, Python takes its keywords from them, validate() checks their ranges and the reference
+// documentation is generated from the command line's help: one definition each.
+struct CURVEMESH_API ParameterOption {
+  // What the option's value is.
+  enum class Kind {
+    number,   // a real number in [min, max] (min excluded when min_open)
+    integer,  // an integer in [min, max]
+    flag,     // true or false; on the command line the flag alone sets `flag_value`
+    choice,   // one of `choices`, its index the value
+  };
+  const char* option;       // the long option, as messages name it: "--edge-length"
+  const char* names;        // every name on the command line, CLI11's syntax: "-l,--edge-length"
+  const char* python;       // Python's keyword: "edge_length"
+  const char* symbol;       // the paper's symbol ("l"), or ""
+  const char* group;        // "features", "limits", "mesh" or "run": which commands take it
+  Kind kind;                // what its value is
+  double min;               // the range (number, integer): its lower end ...
+  double max;               // ... and its upper end
+  bool min_open;            // min itself excluded (number)
+  double flag_value;        // what the command line's flag sets (flag)
+  std::vector<const char*> choices;  // the names of the values (choice)
+  const char* help;         // the command line's help text
+  double (*get)(const Parameters&);  // the field as a number (a flag 0 or 1, a choice its index)
+  void (*set)(Parameters&, double);  // sets the field from such a number (checked first: check())
+
+  // Throws Error (invalid_parameters) when `value` is outside the option's range, naming the
+  // option as validate() does: "--mu (0) must be a positive number".
+  void check(double value) const;
+};
+
+// Every option of Parameters, in the order --help lists them.
+CURVEMESH_API std::vector<ParameterOption> parameter_options();
 
 // Every failure curvemesh reports. what() is the message the command line prints after
 // "curvemesh: "; it names the input (file, line and element where it can).

@@ -9,12 +9,12 @@ arrays, as files, or as a meshio mesh.
     m.nodes.shape, m.triangles.shape      # (N, 2) float64, (M, 10) int64
     m.write("drawing.msh")                # the very file `curvemesh mesh` writes
 
-Options are the command line's long options with "_" for "-" (``mu``, ``epsilon``, ``eps_m``,
-``edge_length``, ``min_edge_length``, ``min_angle``, ``junction_angle``, ``order``, ``linear``,
-``curve_tolerance``, ``max_iterations``, ``stop_amips``, ``box_margin``, ``curved_stop_amips``,
-``max_curved_passes``), and ``features=False`` for ``--no-features``; lengths are relative to
-the diagonal of the drawing's bounding box. The limits (``max_input_mb``, ``max_elements``,
-``max_curves``, ``max_triangles``) bound what a drawing may cost: beyond one, ValueError names it.
+Options are the command line's long options with "_" for "-", defined once for both by the
+library (curvemesh.OPTIONS lists them with their defaults): the method's (``mu``, ``epsilon``,
+``edge_length``, ``order``, ...; ``features=False`` for ``--no-features``; lengths relative to
+the diagonal of the drawing's bounding box), what the run gives out (``regions``, ``domain``,
+``stop_after``) and the limits (``max_input_mb``, ``max_elements``, ``max_curves``,
+``max_triangles``), which bound what a drawing may cost: beyond one, ValueError names it.
 
 Errors: an unreadable drawing or an invalid option value raises ValueError with the message the
 command line prints; an unknown option or a value of the wrong type raises TypeError; a file
@@ -26,49 +26,82 @@ import json
 import numbers
 import operator
 import os
+import warnings
 
 import numpy as np
 
 from . import _curvemesh
 
-__all__ = ["Mesh", "mesh", "mesh_curves", "check", "OPTIONS", "__version__"]
+__all__ = ["Mesh", "CurvemeshWarning", "mesh", "mesh_curves", "check", "OPTIONS", "__version__"]
 
 __version__ = _curvemesh.version()
 
-# Option name -> (field of the C++ Parameters, kind, command-line option).
-_OPTIONS = {
-    "mu": ("mu_rel", float, "--mu"),
-    "epsilon": ("epsilon_rel", float, "--epsilon"),
-    "eps_m": ("eps_m_rel", float, "--eps-m"),
-    "edge_length": ("edge_length_rel", float, "--edge-length"),
-    "min_edge_length": ("min_edge_length_rel", float, "--min-edge-length"),
-    "min_angle": ("alpha_deg", float, "--min-angle"),
-    "junction_angle": ("junction_angle_deg", float, "--junction-angle"),
-    "features": ("features", bool, "--no-features"),
-    "order": ("order", int, "--order"),
-    # linear=True is order=1, as --linear is --order 1.
-    "linear": (None, bool, "--linear"),
-    "curve_tolerance": ("curve_tolerance_rel", float, "--curve-tolerance"),
-    "max_iterations": ("max_iterations", int, "--max-iterations"),
-    "stop_amips": ("stop_amips", float, "--stop-amips"),
-    "box_margin": ("box_margin_rel", float, "--box-margin"),
-    "curved_stop_amips": ("curved_stop_amips", float, "--curved-stop-amips"),
-    "max_curved_passes": ("max_curved_passes", int, "--max-curved-passes"),
-    # The limits: what a drawing may cost before it is refused (ValueError naming the limit).
-    "max_input_mb": ("max_input_mb", float, "--max-input-mb"),
-    "max_elements": ("max_elements", "count", "--max-elements"),
-    "max_curves": ("max_curves", "count", "--max-curves"),
-    "max_triangles": ("max_triangles", "count", "--max-triangles"),
-}
+# Python keyword -> the option as the library defines it (curvemesh::parameter_options(): the
+# command line's option, kind, range, choices, default, help): one definition serves both.
+_OPTIONS = {o["python"]: o for o in _curvemesh.parameter_options()}
+
+
+def _default(option):
+    value = option["default"]
+    if option["kind"] == "flag":
+        return bool(value)
+    if option["kind"] == "choice":
+        return option["choices"][int(value)]
+    return int(value) if option["kind"] == "integer" else value
+
 
 #: The options mesh() and mesh_curves() take, each with its default.
-OPTIONS = {
-    name: getattr(_curvemesh.Parameters(), field) if field else False for name, (field, _, _) in _OPTIONS.items()
-}
+OPTIONS = {name: _default(o) for name, o in _OPTIONS.items()}
+
+# --msh-version's names for the Gmsh formats write() takes.
+_MSH_VERSIONS = {"4.1": 41, "41": 41, 41: 41, "2.2": 22, "22": 22, 22: 22}
+
+
+class CurvemeshWarning(UserWarning):
+    """What the reader warns about in a drawing (an element it skipped, a drawing with nothing
+    drawn), the warnings the command line prints: mesh() and mesh_curves() issue one each
+    through Python's warnings module, so a filter can silence them or make them errors."""
+
+
+def _warned(mesh, name):
+    """`mesh`, each of its warnings issued as a CurvemeshWarning of the caller's caller."""
+    for text in mesh.warnings:
+        warnings.warn(f"{name}: {text}", CurvemeshWarning, stacklevel=3)
+    return mesh
+
 
 _LINE_TAG_NAMES = np.array(_curvemesh.LINE_TAG_NAMES)
 # The physical groups of curvemesh's .msh files (and of Mesh.to_meshio()).
 _PHYSICAL = {"primary": 1, "secondary": 2, "boundary": 3, "domain": 4}
+
+
+def _number(name, option, value):
+    """`value` as the number the library stores for `option`; TypeError for a value of the wrong
+    type, ValueError for a name that is not one of a choice's or an integer beyond any range."""
+    kind = option["kind"]
+    if kind == "flag":
+        if not isinstance(value, (bool, np.bool_)):
+            raise TypeError(f"{name} must be True or False, not {type(value).__name__}")
+        return 1.0 if value else 0.0
+    if kind == "choice":
+        if not isinstance(value, str):
+            raise TypeError(f"{name} must be a str, not {type(value).__name__}")
+        if value not in option["choices"]:
+            raise ValueError(f"{option['option']} ({value!r}) must be one of {', '.join(option['choices'])}")
+        return float(option["choices"].index(value))
+    if isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be a number, not bool")
+    if kind == "integer":
+        try:
+            value = operator.index(value)
+        except TypeError:
+            raise TypeError(f"{name} must be an integer, not {type(value).__name__}") from None
+        if not -(2**53) <= value <= option["max"]:  # beyond what the field holds; below its range the library says
+            raise ValueError(f"{option['option']} ({value}) is out of range")
+        return float(value)
+    if not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a number, not {type(value).__name__}")
+    return float(value)
 
 
 def _parameters(function, options):
@@ -78,32 +111,10 @@ def _parameters(function, options):
     for name, value in options.items():
         if name not in _OPTIONS:
             raise TypeError(f"{function}() got an unexpected keyword argument '{name}'")
-        field, kind, flag = _OPTIONS[name]
-        if kind is bool:
-            if not isinstance(value, (bool, np.bool_)):
-                raise TypeError(f"{name} must be True or False, not {type(value).__name__}")
-            value = bool(value)
-        elif kind in (int, "count"):
-            if isinstance(value, (bool, np.bool_)):
-                raise TypeError(f"{name} must be an integer, not bool")
-            try:
-                value = operator.index(value)
-            except TypeError:
-                raise TypeError(f"{name} must be an integer, not {type(value).__name__}") from None
-            low, high = (1, 2**63) if kind == "count" else (-(2**31), 2**31)
-            if not low <= value < high:
-                raise ValueError(f"{flag} ({value}) is out of range")
-        else:
-            if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
-                raise TypeError(f"{name} must be a number, not {type(value).__name__}")
-            value = float(value)
-        if field is None:  # linear
-            if value and options.get("order", 1) != 1:
-                raise ValueError(f"linear=True is order=1, not order={options['order']}")
-            if value:
-                p.order = 1
-            continue
-        setattr(p, field, value)
+        number = _number(name, _OPTIONS[name], value)
+        if name == "linear" and number and options.get("order", 1) != 1:
+            raise ValueError(f"linear=True is order=1, not order={options['order']}")
+        _curvemesh.set_parameter(p, name, number)
     p.validate()
     return p
 
@@ -199,16 +210,18 @@ class Mesh:
         new list of str."""
         return list(self._mesh.warnings)
 
-    def write(self, path, msh_version=41):
+    def write(self, path, msh_version="4.1"):
         """Writes the mesh to `path` (str or os.PathLike) by its extension: ".msh" (Gmsh ASCII,
-        ``msh_version`` 41 for 4.1 or 22 for 2.2), ".vtu" (VTK quadratic or Lagrange triangles) or ".svg" (a
-        drawing of the mesh). The file is byte for byte the one the command line writes for the
-        same drawing and options, written whole or not at all. Raises OSError when it cannot be
+        ``msh_version`` "4.1" or "2.2" as the command line's --msh-version spells it, or 41 or 22),
+        ".vtu" (VTK quadratic or Lagrange triangles) or ".svg" (a drawing of the mesh). The file is
+        byte for byte the one the command line writes for the same drawing and options, written
+        whole or not at all. Raises OSError when it cannot be
         written or the extension is none of these, ValueError for a path with a NUL or one that is
         the drawing the mesh was read from."""
-        if isinstance(msh_version, (bool, np.bool_)) or msh_version not in (41, 22):
-            raise ValueError(f"msh_version must be 41 or 22, not {msh_version!r}")
-        self._mesh.write(_path(path), int(msh_version))
+        version = _MSH_VERSIONS.get(msh_version) if isinstance(msh_version, (str, int)) else None
+        if version is None or isinstance(msh_version, (bool, np.bool_)):
+            raise ValueError(f'msh_version must be "4.1" or "2.2" (41 or 22), not {msh_version!r}')
+        self._mesh.write(_path(path), version)
 
     def to_meshio(self):
         """The mesh as a meshio.Mesh: the mesh meshio reads from the .msh file write() makes.
@@ -292,20 +305,19 @@ def mesh(svg, **options):
     .poly file), or SVG text: a str that starts with "<" after leading white space. `options`
     are the command line's long options with "_" for "-":
 
-        mu, epsilon, eps_m, edge_length, min_edge_length, min_angle, junction_angle, order, linear,
-        curve_tolerance, max_iterations, stop_amips, box_margin, curved_stop_amips,
-        max_curved_passes, max_input_mb, max_elements, max_curves, max_triangles
+{options}
 
     and features (False is --no-features); see curvemesh.OPTIONS for their defaults. Raises
     ValueError with the command line's message when the drawing cannot be read or an option's
-    value is invalid, TypeError for an unknown option.
+    value is invalid, TypeError for an unknown option. Each warning of the reader (Mesh.warnings)
+    is issued as a CurvemeshWarning, "INPUT: TEXT" as the command line prints it.
     """
     parameters = _parameters("mesh", options)
     if _is_svg_text(svg):
-        return Mesh(_curvemesh.mesh_svg(svg, parameters))
+        return _warned(Mesh(_curvemesh.mesh_svg(svg, parameters)), "<svg>")
     if not isinstance(svg, (str, os.PathLike)):
         raise TypeError(f"svg must be a path or SVG text, not {type(svg).__name__}")
-    return Mesh(_curvemesh.mesh_file(_path(svg), parameters))
+    return _warned(Mesh(_curvemesh.mesh_file(_path(svg), parameters)), os.fspath(svg))
 
 
 def mesh_curves(control_points, **options):
@@ -323,7 +335,7 @@ def mesh_curves(control_points, **options):
             f"control_points must have shape (n, 4, 2): one cubic Bezier curve of 4 (x, y) points per "
             f"row; got shape {points.shape}"
         )
-    return Mesh(_curvemesh.mesh_curves(np.ascontiguousarray(points), parameters))
+    return _warned(Mesh(_curvemesh.mesh_curves(np.ascontiguousarray(points), parameters)), "<curves>")
 
 
 def check(path_or_mesh):
@@ -336,3 +348,21 @@ def check(path_or_mesh):
     if not isinstance(path_or_mesh, (str, os.PathLike)):
         raise TypeError(f"check() takes a path or a Mesh, not {type(path_or_mesh).__name__}")
     return _curvemesh.check_file(_path(path_or_mesh))
+
+
+def _option_list(indent, width=100):
+    """The Python names of the options, wrapped for a docstring."""
+    lines, line = [], indent
+    for name in _OPTIONS:
+        if name == "features":
+            continue
+        piece = name + ", "
+        if len(line) + len(piece) > width:
+            lines.append(line.rstrip())
+            line = indent
+        line += piece
+    lines.append(line.rstrip().rstrip(","))
+    return "\n".join(lines)
+
+
+mesh.__doc__ = mesh.__doc__.replace("{options}", _option_list(" " * 8))

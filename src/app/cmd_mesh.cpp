@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -16,6 +17,7 @@
 #include "base/text.hpp"
 #include "io/msh_writer.hpp"
 #include "io/vtu_writer.hpp"
+#include "io/xdmf_writer.hpp"
 #include "pipeline/output.hpp"
 #include "pipeline/pipeline.hpp"
 
@@ -24,66 +26,96 @@ namespace curvemesh::app {
 namespace {
 
 struct MeshArgs {
-  std::string input, output_msh, output_svg, output_vtu, output_stats, stop_after, domain = "box";
-  bool verbose = false, quiet = false, regions = false;
+  std::string input, output_msh, output_svg, output_vtu, output_xdmf, output_stats;
+  bool verbose = false, quiet = false;
   int msh_version = 41;
   double memory_limit_gb = 0;
   pipeline::Parameters parameters;
 };
 
+// What write_mesh wrote: the files and the mesh in them (with --domain, a part of the whole mesh
+// the statistics describe).
+struct Written {
+  std::vector<std::string> files;
+  int order = 0, triangles = 0, lines = 0, nodes = 0;
+};
+
 // One line for the user: what was written and how good it is.
-void summarize(const MeshArgs& args, const pipeline::Result& r, double seconds) {
-  const auto& mesh = r.stats["mesh"];
+void summarize(const Written& w, const pipeline::Result& r, double seconds) {
+  std::string files;
+  for (const std::string& f : w.files) files += (files.empty() ? "" : ", ") + base::printable(f);
   char line[256];
+  std::snprintf(line, sizeof line, "%d triangles of order %d, %d lines, %d nodes", w.triangles, w.order, w.lines,
+                w.nodes);
+  std::cout << "curvemesh: wrote " << files << ": " << line;
+  if (r.stats.contains("regions")) std::cout << ", " << r.stats["regions"].size() << " regions";
   if (r.curved) {
     const auto& c = r.stats["curve"];
-    std::snprintf(line, sizeof line,
-                  "%d triangles (%d curved), max AMIPS %.3g, min scaled Jacobian %.3g, %.2f s",
-                  mesh["triangles"].get<int>(), c["curved_triangles"].get<int>(),
-                  c["max_amips"].get<double>(), c["min_scaled_jacobian"].get<double>(), seconds);
+    std::snprintf(line, sizeof line, "; max AMIPS %.3g, min scaled Jacobian %.3g", c["max_amips"].get<double>(),
+                  c["min_scaled_jacobian"].get<double>());
   } else {
-    std::snprintf(line, sizeof line, "%d triangles (linear), max AMIPS %.3g, min angle %.3g°, %.2f s",
-                  mesh["triangles"].get<int>(), mesh["max_amips"].get<double>(),
-                  mesh["min_angle_deg"].get<double>(), seconds);
+    const auto& mesh = r.stats["mesh"];
+    std::snprintf(line, sizeof line, "; max AMIPS %.3g, min angle %.3g°", mesh["max_amips"].get<double>(),
+                  mesh["min_angle_deg"].get<double>());
   }
-  std::cout << "curvemesh: wrote " << base::printable(args.output_msh) << ": " << line;
-  if (r.stats.contains("regions")) std::cout << ", " << r.stats["regions"].size() << " regions";
-  std::cout << "\n";
+  std::cout << line;
+  std::snprintf(line, sizeof line, ", %.2f s\n", seconds);
+  std::cout << line;
 }
 
-// The mesh, its drawing, VTU and statistics, written together or not at all.
-int write_mesh(const MeshArgs& args, pipeline::Result& r) {
+// The mesh, its drawing, VTU, XDMF and statistics, written together or not at all.
+int write_mesh(const MeshArgs& args, pipeline::Result& r, Written& written) {
   return write_together([&](base::OutputFiles& out) {
     const auto t = std::chrono::steady_clock::now();
-    // The plain high-order mesh, made once for both files (what pipeline::write_msh and
-    // write_vtu write).
+    // The plain high-order mesh, made once for every file (what pipeline::write_msh, write_vtu
+    // and write_xdmf write).
     const io::HighOrderMesh mesh = pipeline::high_order_mesh(r);
+    written = {{args.output_msh}, mesh.order, mesh.triangle_count(), mesh.line_count(), int(mesh.nodes.size())};
     out.add(args.output_msh, io::msh_string(mesh, io::MshOptions{args.msh_version}));
-    if (!args.output_vtu.empty()) out.add(args.output_vtu, io::vtu_string(mesh, pipeline::cell_data(r)));
-    if (!args.output_svg.empty()) out.add(args.output_svg, pipeline::mesh_svg(r));
+    const auto also = [&](const std::string& path, const std::string& text) {
+      out.add(path, text);
+      written.files.push_back(path);
+    };
+    if (!args.output_vtu.empty()) also(args.output_vtu, io::vtu_string(mesh, pipeline::cell_data(r)));
+    if (!args.output_xdmf.empty()) {
+      const std::string data = io::xdmf_data_path(args.output_xdmf);
+      io::XdmfFiles xdmf = io::xdmf_files(mesh, std::filesystem::path(data).filename().string());
+      also(args.output_xdmf, xdmf.xml);
+      also(data, xdmf.data);
+    }
+    if (!args.output_svg.empty()) also(args.output_svg, pipeline::mesh_svg(r));
     r.stats["seconds"]["write"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-    if (!args.output_stats.empty()) out.add(args.output_stats, pipeline::stats_text(r));
+    if (!args.output_stats.empty()) also(args.output_stats, pipeline::stats_text(r));
   });
+}
+
+// The HDF5 file beside --xdmf's, or nothing.
+std::string xdmf_data(const MeshArgs& args) {
+  return args.output_xdmf.empty() ? std::string() : io::xdmf_data_path(args.output_xdmf);
+}
+
+// XDMF has no cubic triangle: say so before meshing rather than after.
+bool xdmf_possible(const MeshArgs& args) {
+  if (args.output_xdmf.empty() || io::xdmf_order_supported(args.parameters.order)) return true;
+  say("--xdmf: XDMF has no triangle of order " + std::to_string(args.parameters.order) +
+      " (dolfinx reads orders 1 and 2 from it): use --order 2 or 1, or read the .msh with the gmsh API "
+      "(dolfinx.io.gmshio.model_to_mesh), as docs/guide/fenicsx.md shows");
+  return false;
 }
 
 int run_mesh(const MeshArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   pipeline::RunOptions run;
-  if (!args.stop_after.empty()) run.stop_after = *pipeline::stage_named(args.stop_after);
-  if (args.parameters.order == 1 && run.stop_after == pipeline::Stage::curve && !args.stop_after.empty()) {
-    say("--stop-after curve makes no sense with --linear");
-    return kUsage;
-  }
-  if (!parameters_valid(args.parameters)) return kUsage;
+  if (!parameters_valid(args.parameters) || !xdmf_possible(args)) return kUsage;
   if (!outputs_distinct({{"input", args.input}}, {{"-o", args.output_msh},
                                                   {"--vtu", args.output_vtu},
+                                                  {"--xdmf", args.output_xdmf},
+                                                  {"--xdmf's data", xdmf_data(args)},
                                                   {"--svg", args.output_svg},
                                                   {"--stats", args.output_stats}}))
     return kUsage;
   limit_memory(args.memory_limit_gb);
   if (args.verbose) run.log = &std::cerr;
-  run.regions = args.regions;
-  run.domain = *regions::domain_named(args.domain);  // CLI checked the name
   run.warn = [&](const std::string& w) { warn(args.input, w); };
 
   pipeline::Result r;
@@ -98,9 +130,10 @@ int run_mesh(const MeshArgs& args) {
     say(std::string(e.what()) + (e.kind() == Error::Kind::internal ? "; no mesh written" : ""));
     return exit_code(e);
   }
-  if (const int written = write_mesh(args, r); written != kOk) return written;
+  Written written;
+  if (const int code = write_mesh(args, r, written); code != kOk) return code;
   if (!args.quiet)
-    summarize(args, r, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    summarize(written, r, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return kOk;
 }
 
@@ -116,8 +149,8 @@ Runner add_mesh_command(CLI::App& app) {
       "quality optimization (§4.1), and curving (§4.2): cubic 10-node triangles whose edges follow the "
       "primary curves, each certified to have a positive Jacobian. Writes a Gmsh .msh file with the "
       "triangles and the feature edges as line elements in physical groups primary, secondary and "
-      "boundary; with --linear, straight 3-node triangles. Prints one line on success (what was written, "
-      "triangles, worst AMIPS energy, smallest scaled Jacobian, seconds). Lengths are relative to the "
+      "boundary; with --linear, straight 3-node triangles. Prints one line on success (the files written; the triangles, lines and "
+      "nodes in them; worst AMIPS energy, smallest scaled Jacobian, seconds). Lengths are relative to the "
       "diagonal d of the drawing's bounding box.\n"
       "Every output is written whole or not at all, never over the input: when one of them cannot be "
       "written, none is left. Exit codes: 0 success, 1 invalid input, a limit reached (see the --max-* "
@@ -131,27 +164,13 @@ Runner add_mesh_command(CLI::App& app) {
   cmd->add_option("--vtu", args->output_vtu,
                   "also write the mesh as VTK XML (.vtu, Lagrange triangles; opens in ParaView); with --regions "
                   "or --domain each triangle's face and region as cell data");
-  cmd->add_flag(
-      "--regions", args->regions,
-      "tag the triangles by what the drawing paints on them, as a browser does (fill, fill-rule, transforms, "
-      "<use>, CSS; the topmost filled element wins): one physical surface per visible element, named by its id "
-      "(else TAG#INDEX, its index in the document), and 'background' where nothing is filled; --stats lists "
-      "them with fill, triangles and area; --svg fills each triangle with its element's colour. Opacity, "
-      "gradients and patterns do not change what covers what; clip paths and masks are ignored (with a "
-      "warning). The line closing an open filled subpath becomes a feature");
-  cmd->add_option("--domain", args->domain,
-                  "the part of the box to mesh: box (all of it), filled (what some filled element covers: the "
-                  "shape as it is seen, without the background) or evenodd (the even-odd inside of all curves); "
-                  "nodes no triangle uses are dropped, lines on the domain's border keep their tag")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"box", "filled", "evenodd"}));
+  cmd->add_option("--xdmf", args->output_xdmf,
+                  "also write the mesh as XDMF, FEniCSx's format: this .xdmf file and its arrays in an HDF5 "
+                  "file beside it (the same name ending in .h5), with grids \"mesh\", \"cell_tags\" (each "
+                  "triangle's physical group) and \"facet_tags\" (each feature line's); orders 1 and 2 only");
+  add_run_options(*cmd, args->parameters);
   cmd->add_option("--stats", args->output_stats,
                   "write statistics as JSON: counts, min angle, max and mean AMIPS, seconds per stage");
-  cmd->add_option(
-         "--stop-after", args->stop_after,
-         "last stage to run: triangulate (the exact triangulation, unoptimized), optimize (the linear "
-         "mesh) or curve (default; optimize with --linear)")
-      ->check(CLI::IsMember({"triangulate", "optimize", "curve"}));
   add_mesh_options(*cmd, args->parameters, args->msh_version);
   add_memory_limit_option(*cmd, args->memory_limit_gb);
   cmd->add_flag("-v,--verbose", args->verbose,

@@ -13,9 +13,16 @@ class Option;
 
 namespace curvemesh::app {
 
-// --mu, --epsilon, -l/--edge-length, --min-edge-length, --min-angle, --junction-angle, --eps-m,
-// and the limits (--max-input-mb, --max-elements, --max-curves, --max-triangles).
+// The options of curvemesh::parameter_options() (the one definition of each, with its help and
+// range), registered to set `parameters`.
+
+// The groups "features" and "limits": --mu, --epsilon, -l/--edge-length, --min-edge-length,
+// --min-angle, --junction-angle, --no-features, --eps-m; --max-input-mb, --max-elements,
+// --max-curves, --max-triangles.
 void add_feature_options(CLI::App& cmd, pipeline::Parameters& parameters);
+
+// The group "run": --regions, --domain, --stop-after (`mesh` alone).
+void add_run_options(CLI::App& cmd, pipeline::Parameters& parameters);
 
 // --memory-limit GB: the process's address space (setrlimit RLIMIT_AS), as batch sets its
 // children's; 0 (the default) leaves it as it is.
@@ -23,8 +30,9 @@ void add_memory_limit_option(CLI::App& cmd, double& gigabytes);
 // Applies it; a run that reaches it ends with exit 1 ("out of memory", main.cpp).
 void limit_memory(double gigabytes);
 
-// --linear, --msh-version, the feature options, --max-iterations, --stop-amips, --box-margin,
-// --curved-stop-amips, --max-curved-passes. Returns the options it registered, in order.
+// The group "mesh" (--order, --linear, --max-iterations, --stop-amips, --box-margin,
+// --curved-stop-amips, --max-curved-passes), --msh-version and the feature options. Returns the
+// options it registered, in order (what `batch` passes on to its children).
 std::vector<const CLI::Option*> add_mesh_options(CLI::App& cmd, pipeline::Parameters& parameters,
                                                  int& msh_version);
 

@@ -63,7 +63,7 @@ std::optional<fem::MeshedDrawing> mesh_for_solving(const SolveOptions& o, const 
   curved.order = 3;  // --linear solves on the straight map of the curved mesh
   pipeline::RunOptions run;
   run.warn = [&](const std::string& w) { warn(o.input, w); };
-  run.regions = o.domain == "filled";  // the fills classified: meshed_drawing keeps them
+  curved.regions = o.domain == "filled";  // the fills classified: meshed_drawing keeps them
   try {
     ProgressDisplay display(o.input);
     run.progress = [&](const pipeline::Progress& p) { display(p); };

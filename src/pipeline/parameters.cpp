@@ -4,7 +4,6 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
-#include <utility>
 
 namespace curvemesh {
 
@@ -17,51 +16,42 @@ namespace {
   throw Error(Error::Kind::invalid_parameters, s.str());
 }
 
-void positive(const char* option, double value) {
-  if (!(std::isfinite(value) && value > 0)) refuse(option, value, "a positive number");
-}
-
-void within(const char* option, double value, double lo, double hi) {
-  if (!(value >= lo && value <= hi)) {
-    std::ostringstream range;
-    range << "in [" << lo << ", " << hi << "]";
-    refuse(option, value, range.str());
-  }
-}
-
 double radians(double degrees) {
   return degrees * std::numbers::pi / 180.0;
 }
 
 }  // namespace
 
+// The range of one option, as its message says it.
+void ParameterOption::check(double v) const {
+  const ParameterOption& o = *this;
+  if (o.kind == ParameterOption::Kind::flag) return;
+  if (o.kind == ParameterOption::Kind::choice) {
+    if (!(v >= 0 && v < double(o.choices.size()) && v == std::floor(v))) refuse(o.option, v, "one of its names");
+    return;
+  }
+  const bool whole = o.kind != ParameterOption::Kind::integer || v == std::floor(v);
+  if (std::isfinite(v) && whole && (o.min_open ? v > o.min : v >= o.min) && v <= o.max) return;
+  std::ostringstream must;
+  if (o.min == 0 && std::isinf(o.max))
+    must << (o.min_open ? "a positive number" : "a non-negative number");
+  else if (o.min == 0 && o.kind == ParameterOption::Kind::integer && o.max >= 2147483647.0)
+    must << "a non-negative integer";
+  else if (o.min == 1 && o.kind == ParameterOption::Kind::integer && o.max > 1e15)
+    must << "at least 1";
+  else
+    must << (o.kind == ParameterOption::Kind::integer ? "an integer in [" : "in [") << o.min << ", " << o.max << "]";
+  refuse(o.option, v, must.str());
+}
+
 void Parameters::validate() const {
-  positive("--mu", mu_rel);
-  positive("--epsilon", epsilon_rel);
+  for (const ParameterOption& o : parameter_options()) o.check(o.get(*this));
   // ε below μ cannot be honoured: resampling already puts secondary chords up to μ from their curves.
   if (epsilon_rel < mu_rel) {
     std::ostringstream mu;
     mu << "at least --mu (" << mu_rel << ")";
     refuse("--epsilon", epsilon_rel, mu.str());
   }
-  if (!(std::isfinite(eps_m_rel) && eps_m_rel >= 0)) refuse("--eps-m", eps_m_rel, "a non-negative number");
-  positive("--edge-length", edge_length_rel);
-  positive("--min-edge-length", min_edge_length_rel);
-  within("--min-angle", alpha_deg, 0.1, 60.0);
-  within("--junction-angle", junction_angle_deg, 0.0, 180.0);
-  within("--box-margin", box_margin_rel, 1e-3, 10.0);
-  if (max_iterations < 0) refuse("--max-iterations", max_iterations, "a non-negative number");
-  within("--stop-amips", stop_amips, 2.0, 1e9);
-  within("--curved-stop-amips", curved_stop_amips, 2.0, 1e9);
-  if (max_curved_passes < 0) refuse("--max-curved-passes", max_curved_passes, "a non-negative number");
-  if (order < 1 || order > 3) refuse("--order", order, "1, 2 or 3");
-  if (!(std::isfinite(curve_tolerance_rel) && curve_tolerance_rel >= 0))
-    refuse("--curve-tolerance", curve_tolerance_rel, "a non-negative number");
-  positive("--max-input-mb", limits.max_input_mb);
-  for (const auto& [option, value] : {std::pair{"--max-elements", limits.max_elements},
-                                      std::pair{"--max-curves", limits.max_curves},
-                                      std::pair{"--max-triangles", limits.max_triangles}})
-    if (value < 1) refuse(option, double(value), "at least 1");
 }
 
 namespace pipeline {

@@ -145,13 +145,27 @@ double finite_diagonal(const geometry::Box2& box, const std::string& name) {
   return d;
 }
 
-bool reads_paint(const RunOptions& o) {
-  return o.regions || o.domain == regions::Domain::filled;
+Stage stage_of(StopAfter s) {
+  switch (s) {
+    case StopAfter::triangulate:
+      return Stage::triangulate;
+    case StopAfter::optimize:
+      return Stage::optimize;
+    case StopAfter::curve:
+      break;
+  }
+  return Stage::curve;
 }
 
-// The faces of the finished mesh, the fills over them and the part given out (RunOptions).
-void paint(Result& r, const RunOptions& o, const std::function<void(const std::string&)>& warn) {
-  if (!o.regions && o.domain == regions::Domain::box) return;
+bool reads_paint(const Parameters& p) {
+  return p.regions || p.domain == Domain::filled;
+}
+
+// The faces of the finished mesh, the fills over them and the part given out (Parameters'
+// regions and domain).
+void paint(Result& r, const std::function<void(const std::string&)>& warn) {
+  const Parameters& o = r.parameters;
+  if (!o.regions && o.domain == Domain::box) return;
   const auto t = Clock::now();
   const io::HighOrderMesh whole = r.curved ? io::curved_mesh(*r.curved) : io::linear_mesh(r.linear);
   if (reads_paint(o)) {
@@ -177,7 +191,7 @@ void paint(Result& r, const RunOptions& o, const std::function<void(const std::s
   const regions::Painted& p = *r.painted;
   if (p.mesh.triangle_count() == 0)
     throw invalid(r.name + ": the domain '" + regions::domain_name(o.domain) + "' is empty (" +
-                  (o.domain == regions::Domain::filled ? "nothing of the drawing is filled"
+                  (o.domain == Domain::filled ? "nothing of the drawing is filled"
                                                        : "no part of the box is enclosed by its curves") +
                   ")");
   Json& stats = r.stats;
@@ -290,8 +304,10 @@ Result run_stages(const Source& source, const Parameters& parameters, const RunO
   Result r;
   r.name = source.name;
   r.parameters = parameters;
-  const Stage last =
-      parameters.order == 1 && options.stop_after == Stage::curve ? Stage::optimize : options.stop_after;
+  // The earlier of what the caller needs and what the parameters ask for; a linear mesh ends at
+  // `optimize`.
+  const Stage asked = std::min(options.stop_after, stage_of(parameters.stop_after));
+  const Stage last = parameters.order == 1 && asked == Stage::curve ? Stage::optimize : asked;
   Json& stats = r.stats;
   const auto warn = [&](const std::string& w) {
     r.warnings.push_back(w);
@@ -316,7 +332,7 @@ Result run_stages(const Source& source, const Parameters& parameters, const RunO
     } else {
       svg::ReadOptions read;
       read.degenerate_tolerance_rel = parameters.eps_m_rel;
-      read.close_filled_subpaths = reads_paint(options);
+      read.close_filled_subpaths = reads_paint(parameters);
       read.max_curves = parameters.limits.max_curves;
       read.max_elements = parameters.limits.max_elements;
       read.max_input_bytes = static_cast<std::uint64_t>(parameters.limits.max_input_mb * 1048576.0);
@@ -394,12 +410,12 @@ Result run_stages(const Source& source, const Parameters& parameters, const RunO
                    " vertices still have exact coordinates that do not round to doubles without inverting a "
                    "triangle");
   if (last != Stage::curve) {
-    paint(r, options, warn);
+    paint(r, warn);
     return r;
   }
 
   curve_stage(r, source.name, options, warn);
-  paint(r, options, warn);
+  paint(r, warn);
   return r;
 }
 

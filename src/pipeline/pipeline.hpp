@@ -61,19 +61,14 @@ struct RunOptions {
   RunOptions() = default;
   RunOptions(Stage stop_after)
       : stop_after(stop_after) {}  // NOLINT: run(source, parameters, Stage::features)
-  // The last stage to run; past `optimize` only when the parameters are not linear.
+  // The last stage the caller needs (`curvemesh features` stops at read or features); the run
+  // also stops at Parameters::stop_after, and at `optimize` for order 1.
   Stage stop_after = Stage::curve;
   std::ostream* log = nullptr;  // one line per optimization pass when set
   // Called with each warning as it arises (they are in Result::warnings too).
   std::function<void(const std::string&)> warn;
   // Called as the run goes (for progress displays); never changes what the run makes.
   std::function<void(const Progress&)> progress;
-  // What the finished mesh keeps (regions/faces.hpp): the whole box, what the drawing fills, or
-  // the even–odd inside of its curves; and whether its triangles are tagged by the element painted
-  // on them. Either one makes the run read the drawing's paint: the line closing each open
-  // subpath of a filled element becomes a feature, so the faces follow the fills.
-  regions::Domain domain = regions::Domain::box;
-  bool regions = false;
 };
 
 struct Result {

@@ -7,6 +7,7 @@
 // border: the faces touching the border have depth 0, a face next to one of depth k has at most
 // k + 1. Odd depth is the drawing's inside under the even–odd rule over all its curves (a square
 // with a round hole: the ring has depth 1, the hole 2).
+#include <curvemesh/parameters.hpp>
 #include <array>
 #include <map>
 #include <optional>
@@ -43,8 +44,9 @@ struct Classification {
 };
 
 // Which triangles a mesh keeps: the whole box, the faces some filled shape covers (the shape as
-// it is seen, the background gone), or the even–odd inside of all curves (odd depth).
-enum class Domain { box, filled, evenodd };
+// it is seen, the background gone), or the even–odd inside of all curves (odd depth): the
+// public curvemesh::Domain of Parameters.
+using Domain = curvemesh::Domain;
 const char* domain_name(Domain domain);
 // "box", "filled", "evenodd"; nothing for another name.
 std::optional<Domain> domain_named(const std::string& name);

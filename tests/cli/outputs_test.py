@@ -10,6 +10,7 @@ usage: outputs_test.py CURVEMESH_BINARY EXAMPLES_DIR
 """
 import json
 import os
+import re
 import stat
 import subprocess
 import sys
@@ -204,5 +205,36 @@ r = run("mesh", weird, "-o", path("weird.msh"))
 check("a broken drawing with ESC and BEL in its name: exit 1", r.returncode == 1, r.stderr.decode()[-300:])
 check("its message prints them escaped", b"\x1b" not in r.stderr and b"\x07" not in r.stderr and b"\\x1b" in r.stderr,
       r.stderr[-300:])
+
+# --xdmf: the XML and its HDF5 file beside it, both or neither; order 3 refused before anything is
+# read or written; the summary line names every file and counts what the files hold.
+folder = fresh_folder("xdmf")
+xdmf, h5, msh = (os.path.join(folder, n) for n in ("m.xdmf", "m.h5", "m.msh"))
+r = run("mesh", SOURCE, "-o", msh, "--order", "1", "--domain", "filled", "--xdmf", xdmf)
+check("--xdmf: exit 0", r.returncode == 0, r.stderr.decode()[-300:])
+check("--xdmf: the XML names its HDF5 file beside it", b'Format="HDF">m.h5:/mesh/geometry<' in read(xdmf))
+check("--xdmf: the HDF5 file", read(h5).startswith(b"\x89HDF\r\n\x1a\n"))
+in_file = int(read(msh).split(b"$Elements\n")[1].split(b"\n")[0].split()[1])  # 4.1: blocks, elements, ...
+triangles = [int(n) for n in re.findall(rb"(\d+) triangles of order 1, (\d+) lines", r.stdout)[0]]
+check("the summary names every file written", r.stdout.decode().startswith(f"curvemesh: wrote {msh}, {xdmf}, {h5}: "),
+      r.stdout)
+check("the summary counts the triangles and lines written (--domain filled: fewer than meshed)",
+      sum(triangles) == in_file, (triangles, in_file))
+first = read(h5)
+os.remove(h5)
+r = run("mesh", SOURCE, "-o", msh, "--order", "1", "--domain", "filled", "--xdmf", xdmf, "-q")
+check("--xdmf: the same HDF5 bytes for the same mesh", read(h5) == first)
+for name in os.listdir(folder):
+    os.remove(os.path.join(folder, name))
+r = run("mesh", SOURCE, "-o", msh, "--xdmf", xdmf)
+check("--xdmf with order 3: exit 2, saying what to do", r.returncode == 2 and b"--order 2 or 1" in r.stderr,
+      r.stderr.decode()[-300:])
+check("--xdmf with order 3: nothing written", os.listdir(folder) == [], os.listdir(folder))
+r = run("mesh", SOURCE, "-o", msh, "--order", "1", "--xdmf", xdmf, "--stats", os.path.join(folder, "no", "s.json"))
+check("--xdmf and an unwritable --stats: exit 1, neither XDMF file left",
+      r.returncode == 1 and os.listdir(folder) == [], os.listdir(folder))
+r = run("mesh", SOURCE, "-o", h5, "--order", "1", "--xdmf", xdmf)
+check("-o naming --xdmf's HDF5 file: a usage error", r.returncode == 2 and os.listdir(folder) == [],
+      r.stderr.decode()[-300:])
 
 sys.exit(finish())

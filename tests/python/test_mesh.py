@@ -3,6 +3,7 @@ the errors it raises."""
 import json
 import pathlib
 import re
+import warnings
 
 import numpy as np
 import pytest
@@ -201,9 +202,11 @@ def test_version(run_cli):
 def test_options_and_defaults():
     assert set(curvemesh.OPTIONS) == {
         "mu", "epsilon", "eps_m", "edge_length", "min_edge_length", "min_angle", "junction_angle", "order", "linear",
-        "curve_tolerance", "max_iterations", "stop_amips", "box_margin", "curved_stop_amips", "max_curved_passes", "features",
-        "max_input_mb", "max_elements", "max_curves", "max_triangles",
+        "curve_tolerance", "max_iterations", "stop_amips", "box_margin", "curved_stop_amips", "max_curved_passes",
+        "features", "max_input_mb", "max_elements", "max_curves", "max_triangles", "regions", "domain", "stop_after",
     }
+    assert curvemesh.OPTIONS["regions"] is False and curvemesh.OPTIONS["domain"] == "box"
+    assert curvemesh.OPTIONS["stop_after"] == "curve"
     assert curvemesh.OPTIONS["edge_length"] == 0.05 and curvemesh.OPTIONS["linear"] is False
     assert curvemesh.OPTIONS["order"] == 3 and curvemesh.OPTIONS["curve_tolerance"] == 0.0
     assert curvemesh.OPTIONS["max_curves"] == 500000 and curvemesh.OPTIONS["max_triangles"] == 2000000
@@ -275,14 +278,44 @@ def test_warnings_are_the_command_lines(run_cli, tmp_path):
     bad = tmp_path / "bad.svg"
     bad.write_text('<svg xmlns="http://www.w3.org/2000/svg">\n<path d="M 0 0 L 10 0 L 10"/>\n</svg>\n')
     stderr = run_cli("mesh", bad, "-o", tmp_path / "bad.msh").stderr
-    m = curvemesh.mesh(bad)
+    with pytest.warns(curvemesh.CurvemeshWarning) as issued:
+        m = curvemesh.mesh(bad)
     assert m.warnings == ["line 2, <path>: path data ends inside a command; drawn up to there"]
     for w in m.warnings:
         assert f"curvemesh: {bad}: warning: {w}" in stderr
-    assert curvemesh.mesh('<svg xmlns="http://www.w3.org/2000/svg"></svg>').warnings == [
-        "nothing is drawn; meshing the canvas alone"
+    # Issued through Python's warnings, as the command line prints them, from the caller's line.
+    assert [str(w.message) for w in issued] == [f"{bad}: {w}" for w in m.warnings]
+    assert all(w.filename == __file__ for w in issued)
+    with pytest.warns(curvemesh.CurvemeshWarning, match="^<svg>: nothing is drawn; meshing the canvas alone$"):
+        assert curvemesh.mesh('<svg xmlns="http://www.w3.org/2000/svg"></svg>').warnings == [
+            "nothing is drawn; meshing the canvas alone"
+        ]
+    with pytest.warns(curvemesh.CurvemeshWarning):
+        assert curvemesh.mesh(bad.read_text()).warnings == m.warnings  # SVG text: the same warnings
+    with warnings.catch_warnings():  # a filter makes them errors
+        warnings.simplefilter("error", curvemesh.CurvemeshWarning)
+        with pytest.raises(curvemesh.CurvemeshWarning):
+            curvemesh.mesh(bad)
+
+
+def test_regions_domain_and_stop_after_as_on_the_command_line(examples, run_cli, tmp_path):
+    svg = examples / "overlapping-shapes.svg"
+    cases = [
+        (dict(regions=True), ["--regions"]),
+        (dict(domain="filled"), ["--domain", "filled"]),
+        (dict(regions=True, domain="evenodd", order=1), ["--regions", "--domain", "evenodd", "--order", "1"]),
+        (dict(stop_after="optimize"), ["--stop-after", "optimize"]),
     ]
-    assert curvemesh.mesh(bad.read_text()).warnings == m.warnings  # SVG text: the same warnings
+    for options, cli in cases:
+        run_cli("mesh", svg, *cli, "-o", tmp_path / "cli.msh", "--msh-version", "2.2")
+        curvemesh.mesh(svg, **options).write(tmp_path / "py.msh", msh_version="2.2")
+        assert (tmp_path / "py.msh").read_bytes() == (tmp_path / "cli.msh").read_bytes(), options
+    assert curvemesh.mesh(svg, stop_after="triangulate").order == 1
+    assert len(curvemesh.mesh(svg, domain="filled").triangles) < len(curvemesh.mesh(svg).triangles)
+    with pytest.raises(ValueError, match="--domain .'inside'. must be one of box, filled, evenodd"):
+        curvemesh.mesh(svg, domain="inside")
+    with pytest.raises(TypeError):
+        curvemesh.mesh(svg, regions="yes")
 
 
 def test_missing_file_raises_the_command_lines_message(run_cli, tmp_path):
@@ -301,7 +334,7 @@ def test_missing_file_raises_the_command_lines_message(run_cli, tmp_path):
         (dict(mu=0), "--mu (0) must be a positive number"),
         (dict(mu=float("nan")), "--mu (nan) must be a positive number"),
         (dict(min_angle=90), "--min-angle (90) must be in [0.1, 60]"),
-        (dict(max_iterations=-1), "--max-iterations (-1) must be a non-negative number"),
+        (dict(max_iterations=-1), "--max-iterations (-1) must be a non-negative integer"),
         (dict(max_curved_passes=2**40), "--max-curved-passes (1099511627776) is out of range"),
     ],
 )
@@ -359,8 +392,20 @@ def test_output_errors_raise_os_error(examples, tmp_path):
         m.write(tmp_path / "no-such-folder" / "m.msh")
     with pytest.raises(OSError):
         m.write(tmp_path / "m.txt")
-    with pytest.raises(ValueError):
-        m.write(tmp_path / "m.msh", msh_version=3)
+    for bad in [3, "3", 4.1, True, None]:
+        with pytest.raises(ValueError):
+            m.write(tmp_path / "m.msh", msh_version=bad)
+
+
+def test_msh_version_spelled_as_the_command_line(examples, run_cli, tmp_path):
+    svg = examples / "square-with-hole.svg"
+    m = curvemesh.mesh(svg, linear=True)
+    for cli_name, names in [("4.1", ["4.1", 41, "41"]), ("2.2", ["2.2", 22, "22"])]:
+        run_cli("mesh", svg, "--linear", "--msh-version", cli_name, "-o", tmp_path / f"cli{cli_name}.msh")
+        cli = (tmp_path / f"cli{cli_name}.msh").read_bytes()
+        for k, name in enumerate(names):
+            m.write(tmp_path / f"py{cli_name}-{k}.msh", msh_version=name)
+            assert (tmp_path / f"py{cli_name}-{k}.msh").read_bytes() == cli
     with pytest.raises(TypeError):
         curvemesh.Mesh(None)
 

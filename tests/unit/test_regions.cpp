@@ -56,10 +56,9 @@ double bezier_loop_area(const std::vector<CubicBezier>& loop) {
 
 pipeline::Result mesh_painted(const std::string& text, regions::Domain domain = regions::Domain::box,
                               bool tag = true, Parameters p = {}) {
-  pipeline::RunOptions o;
-  o.regions = tag;
-  o.domain = domain;
-  return pipeline::run(pipeline::Source::svg(text, "<test>"), p, o);
+  p.regions = tag;
+  p.domain = domain;
+  return pipeline::run(pipeline::Source::svg(text, "<test>"), p);
 }
 
 // The region (name) of the triangle whose sample point is nearest to q.
@@ -365,9 +364,8 @@ TEST(Regions, AnUndecidableFaceFailsNamingTheElement) {
   for (const svg::Subpath& s : svg::ellipse_subpaths(5, 5, 2, 2))
     for (const CubicBezier& c : s.segments) soup.curves.push_back({c, 0, {}, {}, {}, {}});
   Parameters p;
-  pipeline::RunOptions o;
-  o.regions = true;
-  const pipeline::Result first = pipeline::run(pipeline::Source::curves(soup, "<soup>"), p, o);
+  p.regions = true;
+  const pipeline::Result first = pipeline::run(pipeline::Source::curves(soup, "<soup>"), p);
   // The face inside the circle: the one holding the triangle nearest the centre.
   const io::HighOrderMesh whole = pipeline::high_order_mesh(first);
   const regions::Faces faces = regions::find_faces(whole);
@@ -397,7 +395,7 @@ TEST(Regions, AnUndecidableFaceFailsNamingTheElement) {
   }
   soup.fills.push_back(trap);
   try {
-    pipeline::run(pipeline::Source::curves(soup, "<soup>"), p, o);
+    pipeline::run(pipeline::Source::curves(soup, "<soup>"), p);
     FAIL() << "an undecidable face must not be guessed";
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), Error::Kind::internal);

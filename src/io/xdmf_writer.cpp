@@ -1,0 +1,184 @@
+#include "io/xdmf_writer.hpp"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <set>
+#include <span>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace curvemesh::io {
+
+namespace {
+
+// XDMF's names of the element types. Its node orders are VTK's, which for triangles up to order 2
+// and lines are Gmsh's (the corners, then the inner nodes edge by edge): the arrays go as they are.
+const char* triangle_type(int order) {
+  return order == 1 ? "Triangle" : "Triangle_6";
+}
+const char* line_type(int order) {
+  return order == 1 ? "Polyline" : "Edge_3";
+}
+
+// An HDF5 file made in memory (the core driver, no backing store), so that its bytes go through
+// the same all-or-nothing, no-link writing as every other output.
+class MemoryH5 {
+ public:
+  MemoryH5() {
+    fapl_ = H5Pcreate(H5P_FILE_ACCESS);
+    if (fapl_ < 0 || H5Pset_fapl_core(fapl_, 1 << 20, 0) < 0) throw std::runtime_error("HDF5: no in-memory file");
+    file_ = H5Fcreate("curvemesh.h5", H5F_ACC_TRUNC, H5P_DEFAULT, fapl_);
+    if (file_ < 0) throw std::runtime_error("HDF5: cannot create an in-memory file");
+  }
+  ~MemoryH5() {
+    if (file_ >= 0) H5Fclose(file_);
+    if (fapl_ >= 0) H5Pclose(fapl_);
+  }
+  MemoryH5(const MemoryH5&) = delete;
+  MemoryH5& operator=(const MemoryH5&) = delete;
+
+  // Makes the group at `path` ("/mesh").
+  void group(const std::string& path) {
+    const hid_t properties = untimed(H5Pcreate(H5P_GROUP_CREATE));
+    const hid_t g = H5Gcreate2(file_, path.c_str(), H5P_DEFAULT, properties, H5P_DEFAULT);
+    H5Pclose(properties);
+    if (g < 0) throw std::runtime_error("HDF5: cannot make group " + path);
+    H5Gclose(g);
+  }
+
+  // Writes a (rows, columns) array at `path` ("/mesh/topology"), in a group made before.
+  template <class T>
+  void write(const std::string& path, const std::vector<T>& values, std::size_t columns) {
+    const hsize_t dims[2] = {values.size() / std::max<std::size_t>(columns, 1), columns};
+    const hid_t type = std::is_floating_point_v<T> ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64;
+    const hid_t space = H5Screate_simple(columns > 1 ? 2 : 1, dims, nullptr);
+    const hid_t properties = untimed(H5Pcreate(H5P_DATASET_CREATE));
+    const hid_t set = H5Dcreate2(file_, path.c_str(), type, space, H5P_DEFAULT, properties, H5P_DEFAULT);
+    const herr_t written = set < 0 ? -1 : H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+    if (set >= 0) H5Dclose(set);
+    H5Pclose(properties);
+    H5Sclose(space);
+    if (written < 0) throw std::runtime_error("HDF5: cannot write " + path);
+  }
+
+  // The file's bytes.
+  std::string bytes() {
+    if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw std::runtime_error("HDF5: cannot flush");
+    const ssize_t size = H5Fget_file_image(file_, nullptr, 0);
+    std::string out(size > 0 ? std::size_t(size) : 0, '\0');
+    if (size <= 0 || H5Fget_file_image(file_, out.data(), out.size()) != size)
+      throw std::runtime_error("HDF5: cannot read the file image");
+    return out;
+  }
+
+ private:
+  // Object creation properties without the times HDF5 records by default: the same mesh gives
+  // the same bytes.
+  static hid_t untimed(hid_t properties) {
+    if (properties < 0 || H5Pset_obj_track_times(properties, 0) < 0) throw std::runtime_error("HDF5: no properties");
+    return properties;
+  }
+
+  hid_t fapl_ = -1, file_ = -1;
+};
+
+std::vector<std::int64_t> wide(std::span<const int> v) {
+  return std::vector<std::int64_t>(v.begin(), v.end());
+}
+
+// The XML of one DataItem: a (rows, columns) array in the data file.
+std::string data_item(const std::string& data_name, const std::string& path, std::size_t rows, int columns,
+                      bool real) {
+  std::ostringstream s;
+  s << "<DataItem Dimensions=\"" << rows;
+  if (columns > 1) s << ' ' << columns;
+  s << "\" NumberType=\"" << (real ? "Float" : "Int") << "\" Precision=\"8\" Format=\"HDF\">" << data_name << ':'
+    << path << "</DataItem>";
+  return s.str();
+}
+
+// The lines with their tags, each set of nodes once (its first line's tag).
+std::pair<std::vector<int>, std::vector<int>> distinct_lines(const HighOrderMesh& m) {
+  std::vector<int> nodes, tags;
+  std::set<std::vector<int>> seen;
+  for (int l = 0; l < m.line_count(); ++l) {
+    const std::span<const int> line = m.line(l);
+    std::vector<int> key(line.begin(), line.end());
+    std::sort(key.begin(), key.end());
+    if (!seen.insert(std::move(key)).second) continue;
+    nodes.insert(nodes.end(), line.begin(), line.end());
+    tags.push_back(m.line_physical[std::size_t(l)]);
+  }
+  return {std::move(nodes), std::move(tags)};
+}
+
+// A grid of elements with their tags on the nodes of the grid "mesh" (referred to, not repeated),
+// its arrays written to `h5` under /NAME.
+void tag_grid(std::ostream& xml, MemoryH5& h5, const std::string& data_name, const std::string& name,
+              const char* type, int size, const std::vector<int>& nodes, const std::vector<int>& tags) {
+  h5.group("/" + name);
+  h5.write("/" + name + "/topology", wide(nodes), std::size_t(size));
+  h5.write("/" + name + "/values", wide(tags), 1);
+  xml << "    <Grid Name=\"" << name << "\" GridType=\"Uniform\">\n"
+      << "      <xi:include xpointer=\"xpointer(/Xdmf/Domain/Grid[@Name='mesh']/Geometry)\"/>\n"
+      << "      <Topology TopologyType=\"" << type << "\" NumberOfElements=\"" << tags.size()
+      << "\" NodesPerElement=\"" << size << "\">\n"
+      << "        " << data_item(data_name, "/" + name + "/topology", tags.size(), size, false) << "\n"
+      << "      </Topology>\n"
+      << "      <Attribute Name=\"" << name << "\" AttributeType=\"Scalar\" Center=\"Cell\">\n"
+      << "        " << data_item(data_name, "/" + name + "/values", tags.size(), 1, false) << "\n"
+      << "      </Attribute>\n"
+      << "    </Grid>\n";
+}
+
+}  // namespace
+
+bool xdmf_order_supported(int order) {
+  return order == 1 || order == 2;
+}
+
+std::string xdmf_data_path(const std::string& xdmf_path) {
+  std::filesystem::path p(xdmf_path);
+  if (p.has_extension() && p.filename() != p.extension()) p.replace_extension(".h5");
+  else p += ".h5";
+  return p.string();
+}
+
+XdmfFiles xdmf_files(const HighOrderMesh& m, const std::string& data_name) {
+  if (!xdmf_order_supported(m.order))
+    throw std::invalid_argument("XDMF has no triangle of order " + std::to_string(m.order) + " (orders 1 and 2)");
+  if (auto error = m.structure_error()) throw std::logic_error("xdmf: " + *error);
+  MemoryH5 h5;
+  std::vector<double> xy;
+  xy.reserve(2 * m.nodes.size());
+  for (const geometry::Vec2& p : m.nodes) xy.insert(xy.end(), {p.x(), p.y()});
+  h5.group("/mesh");
+  h5.write("/mesh/geometry", xy, 2);
+  h5.write("/mesh/topology", wide(m.triangles), std::size_t(m.triangle_size()));
+  std::ostringstream xml;
+  xml << "<?xml version=\"1.0\"?>\n"
+      << "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n"
+      << "  <Domain>\n"
+      << "    <Grid Name=\"mesh\" GridType=\"Uniform\">\n"
+      << "      <Topology TopologyType=\"" << triangle_type(m.order) << "\" NumberOfElements=\"" << m.triangle_count()
+      << "\" NodesPerElement=\"" << m.triangle_size() << "\">\n"
+      << "        " << data_item(data_name, "/mesh/topology", m.triangle_count(), m.triangle_size(), false) << "\n"
+      << "      </Topology>\n"
+      << "      <Geometry GeometryType=\"XY\">\n"
+      << "        " << data_item(data_name, "/mesh/geometry", m.nodes.size(), 2, true) << "\n"
+      << "      </Geometry>\n"
+      << "    </Grid>\n";
+  tag_grid(xml, h5, data_name, "cell_tags", triangle_type(m.order), m.triangle_size(), m.triangles,
+           m.triangle_physical);
+  const auto [line_nodes, line_tags] = distinct_lines(m);
+  tag_grid(xml, h5, data_name, "facet_tags", line_type(m.order), m.line_size(), line_nodes, line_tags);
+  xml << "  </Domain>\n"
+      << "</Xdmf>\n";
+  return {xml.str(), h5.bytes()};
+}
+
+}  // namespace curvemesh::io
