@@ -323,6 +323,15 @@ except Exception as e:  # a reader failure is a finding
 with open(drawing) as f:
     text = f.read()
 check("svg: quadratic edges drawn as Q commands", " Q " in text and " C " not in text, text[:300])
+# XDMF (FEniCSx's format) takes quadratic triangles: Triangle_6 cells, Edge_3 facets.
+xdmf = path("shapes.xdmf")
+r = run("mesh", os.path.join(examples, "overlapping-shapes.svg"), "-o", path("x.msh"), "--order", "2", "--xdmf", xdmf)
+check("xdmf: exit 0", r.returncode == 0, r.stderr)
+if r.returncode == 0:
+    with open(xdmf) as f:
+        text = f.read()
+    check("xdmf: Triangle_6 cells and Edge_3 facets", 'TopologyType="Triangle_6"' in text and '"Edge_3"' in text, text[:400])
+    check("xdmf: the HDF5 file beside it", os.path.exists(path("shapes.h5")))
 a, b = path("det-a.msh"), path("det-b.msh")
 run("mesh", os.path.join(examples, "overlapping-shapes.svg"), "-o", a, "--order", "2")
 run("mesh", os.path.join(examples, "overlapping-shapes.svg"), "-o", b, "--order", "2")
