@@ -174,7 +174,7 @@ PYBIND11_MODULE(_curvemesh, m) {
       "The option with this Python name as a number.");
 
   py::class_<curvemesh::Mesh>(m, "Mesh", "A finished mesh (curvemesh::Mesh); curvemesh.Mesh wraps it.")
-      .def_property_readonly("order", &curvemesh::Mesh::order, "3 (cubic) or 1 (linear).")
+      .def_property_readonly("order", &curvemesh::Mesh::order, "3 (cubic), 2 (quadratic) or 1 (linear).")
       .def(
           "nodes",
           [](const curvemesh::Mesh& self) {
@@ -187,14 +187,14 @@ PYBIND11_MODULE(_curvemesh, m) {
             return table(self.triangles().data(), self.triangle_count(),
                          static_cast<std::size_t>(self.nodes_per_triangle()));
           },
-          "A new int64 array (M, 10) or (M, 3) of node ids, in Gmsh's order.")
+          "A new int64 array (M, 10), (M, 6) or (M, 3) of node ids, in Gmsh's order.")
       .def(
           "lines",
           [](const curvemesh::Mesh& self) {
             return table(self.lines().data(), self.line_count(),
                          static_cast<std::size_t>(self.nodes_per_line()));
           },
-          "A new int64 array (K, 4) or (K, 2) of node ids: both ends, then the inner nodes.")
+          "A new int64 array (K, 4), (K, 3) or (K, 2) of node ids: both ends, then the inner nodes.")
       .def("line_tag_codes", &line_tag_codes, "A new uint8 array (K,): each line's index in LINE_TAG_NAMES.")
       .def(
           "line_curves",

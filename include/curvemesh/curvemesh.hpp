@@ -47,7 +47,8 @@ using Curve = std::array<std::array<double, 2>, 4>;
 // default-constructed Mesh is empty (order 0, no nodes) and cannot be written.
 class CURVEMESH_API Mesh {
  public:
-  // Parameters::order: 3, cubic triangles of 10 nodes and lines of 4; 1, triangles of 3 and lines of 2.
+  // Parameters::order: 3, cubic triangles of 10 nodes and lines of 4; 2, quadratic triangles of 6
+  // nodes and lines of 3; 1, triangles of 3 and lines of 2.
   int order() const;
   // How many nodes: the length of nodes().
   std::size_t node_count() const;
@@ -59,14 +60,14 @@ class CURVEMESH_API Mesh {
   // (x, y) per node, in the drawing's units (SVG's user space: y points down).
   const std::vector<std::array<double, 2>>& nodes() const;
   // Node ids, nodes_per_triangle() per triangle, in Gmsh's order: the corners counter-clockwise
-  // (as seen with y up), then two nodes on each edge 0→1, 1→2, 2→0 from its first corner on,
-  // then the centre.
+  // (as seen with y up), then the order − 1 nodes on each edge 0→1, 1→2, 2→0 from its first
+  // corner on (two for order 3, the middle for order 2), then order 3's centre.
   const std::vector<std::int64_t>& triangles() const;
-  // 10 for a curved mesh, 3 for a linear one (0 when empty).
+  // 10 for order 3, 6 for order 2, 3 for order 1 (0 when empty).
   int nodes_per_triangle() const;
   // Node ids of the feature lines, nodes_per_line() per line: both ends, then the inner nodes.
   const std::vector<std::int64_t>& lines() const;
-  // 4 for a curved mesh, 2 for a linear one (0 when empty).
+  // order + 1: 4, 3 or 2 (0 when empty).
   int nodes_per_line() const;
   // Per line: what it lies on (a curve followed exactly, a curve kept within ε, the box).
   const std::vector<LineTag>& line_tags() const;
@@ -82,7 +83,7 @@ class CURVEMESH_API Mesh {
   const std::vector<std::string>& warnings() const;
 
   // Writes the mesh by the path's extension: ".msh" (Gmsh, `msh_version` 41 or 22), ".vtu" (VTK
-  // Lagrange triangles) or ".svg" (a drawing of the mesh). The file is the very one the command
+  // quadratic or Lagrange triangles) or ".svg" (a drawing of the mesh). The file is the very one the command
   // line writes for the same drawing and parameters, written whole or not at all (never through a
   // link planted beside it). Throws Error (output) when it cannot be written, the extension (in
   // any case) is none of these or the Mesh is empty, and Error (invalid_parameters) for another

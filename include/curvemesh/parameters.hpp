@@ -50,7 +50,10 @@ struct CURVEMESH_API Parameters {
   double stop_amips = 10.0;      // --stop-amips: ... or once every triangle's AMIPS energy is at most this;
                                  // also the bound of both coarsenings (linear, and along the curves)
   // §4.2: curving.
-  int order = 3;  // --order: the elements' order: 3 (cubic 10-node triangles) or 1 (straight 3-node; --linear)
+  int order = 3;  // --order: the elements' order: 3 (cubic 10-node triangles), 2 (quadratic 6-node) or 1
+                  // (straight 3-node; --linear)
+  double curve_tolerance_rel = 0;  // --curve-tolerance: order 2, the largest distance from an edge on a primary
+                                   // curve to the curve (edges farther are split); 0 is ε (epsilon_rel)
   double curved_stop_amips =
       20.0;                    // --curved-stop-amips: step 4 stops once every curved triangle is at most this
   int max_curved_passes = 10;  // --max-curved-passes: ... or after this many passes

@@ -131,9 +131,10 @@ def _path(path):
 class Mesh:
     """A finished triangle mesh, as mesh() and mesh_curves() return it.
 
-    Curved (order 3): cubic triangles of 10 nodes and feature lines of 4, every triangle's
-    Jacobian certified positive. Linear (``linear=True``, order 1): triangles of 3 nodes, lines
-    of 2. Coordinates are in the drawing's units (SVG user space: y points down).
+    Curved (order 3): cubic triangles of 10 nodes and feature lines of 4; or (``order=2``)
+    quadratic triangles of 6 nodes and lines of 3; every triangle's Jacobian certified positive.
+    Linear (``order=1``, ``linear=True``): triangles of 3 nodes, lines of 2. Coordinates are in
+    the drawing's units (SVG user space: y points down).
 
     The arrays are read-only and made once, on first use.
     """
@@ -157,7 +158,8 @@ class Mesh:
 
     @property
     def order(self):
-        """3 for a curved mesh (10-node triangles), 1 for a linear one (3-node triangles)."""
+        """3 for a cubic mesh (10-node triangles), 2 for a quadratic one (6-node triangles), 1 for a
+        linear one (3-node triangles)."""
         return self._mesh.order
 
     @property
@@ -167,23 +169,25 @@ class Mesh:
 
     @property
     def triangles(self):
-        """Node indices per triangle: int64 array (M, 10), or (M, 3) when linear.
+        """Node indices per triangle: int64 array (M, 10), (M, 6) when quadratic, (M, 3) when
+        linear.
 
-        Gmsh's node order: the three corners counter-clockwise (as seen with y up), then two
-        nodes on each edge 0-1, 1-2, 2-0 from its first corner on, then the centre.
+        Gmsh's node order: the three corners counter-clockwise (as seen with y up), then the
+        nodes on each edge 0-1, 1-2, 2-0 from its first corner on (two, or the middle one when
+        quadratic), then the centre (cubic).
         """
         return self._array("triangles", self._mesh.triangles)
 
     @property
     def lines(self):
-        """Node indices per feature line: int64 array (K, 4), or (K, 2) when linear; both ends
-        first, then the inner nodes (Gmsh's order)."""
+        """Node indices per feature line: int64 array (K, order + 1): (K, 4), (K, 3) when
+        quadratic, (K, 2) when linear; both ends first, then the inner nodes (Gmsh's order)."""
         return self._array("lines", self._mesh.lines)
 
     @property
     def line_tags(self):
         """What each feature line lies on: a str array (K,) of "primary" (a curve of the
-        drawing, reproduced by curved edges), "secondary" (a piece of a curve kept within
+        drawing, followed by curved edges), "secondary" (a piece of a curve kept within
         epsilon by straight edges) or "boundary" (a side of the meshed box)."""
         return self._array("line_tags", lambda: _LINE_TAG_NAMES[self._mesh.line_tag_codes()])
 
@@ -208,9 +212,10 @@ class Mesh:
 
     def write(self, path, msh_version="4.1"):
         """Writes the mesh to `path` (str or os.PathLike) by its extension: ".msh" (Gmsh ASCII,
-        ``msh_version`` "4.1" or "2.2" as the command line's --msh-version spells it, or 41 or 22), ".vtu" (VTK Lagrange triangles) or ".svg" (a
-        drawing of the mesh). The file is byte for byte the one the command line writes for the
-        same drawing and options, written whole or not at all. Raises OSError when it cannot be
+        ``msh_version`` "4.1" or "2.2" as the command line's --msh-version spells it, or 41 or 22),
+        ".vtu" (VTK quadratic or Lagrange triangles) or ".svg" (a drawing of the mesh). The file is
+        byte for byte the one the command line writes for the same drawing and options, written
+        whole or not at all. Raises OSError when it cannot be
         written or the extension is none of these, ValueError for a path with a NUL or one that is
         the drawing the mesh was read from."""
         version = _MSH_VERSIONS.get(msh_version) if isinstance(msh_version, (str, int)) else None
@@ -225,21 +230,23 @@ class Mesh:
 
         Points are (N, 3) with z = 0 (what meshio's readers give and its writers take). Cells come
         as in the file: one block of "line4" per line tag present (primary, secondary, boundary;
-        each block in the order of ``lines``), then one of "triangle10" ("line" and "triangle"
-        when linear); meshio's node order for these cells is Gmsh's, the order of ``triangles``
-        and ``lines``. Cell data "gmsh:physical" holds each cell's physical group (1 primary, 2
+        each block in the order of ``lines``), then one of "triangle10" ("line3" and "triangle6"
+        when quadratic, "line" and "triangle" when linear); meshio's node order for these cells is
+        Gmsh's, the order of ``triangles`` and ``lines``. Cell data "gmsh:physical" holds each cell's physical group (1 primary, 2
         secondary, 3 boundary, 4 domain, named in field_data) and "gmsh:geometrical" its entity;
         point data "gmsh:dim_tags" the nodes' entities, classified as Gmsh does (those of a
         feature line on its curve), so that meshio writes Gmsh 4.1 files of it that it reads back
         (write()'s own files put every node on the surface). Gmsh 2.2 needs none of it.
 
-        meshio cannot write "triangle10" to VTU: for a curved VTU, use write("mesh.vtu").
+        meshio cannot write "triangle10" to VTU: for a cubic VTU, use write("mesh.vtu").
         """
         import meshio
 
         points = np.zeros((len(self.nodes), 3))
         points[:, :2] = self.nodes
-        line_type, triangle_type = ("line4", "triangle10") if self.order == 3 else ("line", "triangle")
+        line_type, triangle_type = {3: ("line4", "triangle10"), 2: ("line3", "triangle6"), 1: ("line", "triangle")}[
+            self.order
+        ]
         codes = self._mesh.line_tag_codes()
         cells, physical, geometrical, field_data = [], [], [], {}
         # Lines by physical group, ascending; each group is one curve entity tagged by the group.

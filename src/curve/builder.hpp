@@ -11,7 +11,9 @@
 //                        coarsening along the curves;
 //   fit.cpp              step 5: edges that could not follow their curve, the distances left;
 //   guard.cpp            steps 4 and 5: the moves that may raise the worst energy, kept only if
-//                        no worse (after a repair by step 4's operations).
+//                        no worse (after a repair by step 4's operations);
+//   tolerance.cpp        order 2: the distance from an edge to its curve, and the splits that
+//                        bring the primary edges within the tolerance.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -26,6 +28,7 @@
 #include <vector>
 
 #include "curve/curve.hpp"
+#include "geometry/p2_triangle.hpp"
 #include "geometry/p3_triangle.hpp"
 #include "mesh/invariants.hpp"
 #include "mesh/operations.hpp"  // CollapseTest
@@ -41,6 +44,9 @@ int primary_edges_of(const TriMesh& m, const mesh::Triangle& tri);
 
 // Step 1 (split.cpp); returns the number of splits.
 int split_until_one_primary_edge(TriMesh& m, const mesh::Constraints& c);
+// Order 2, after step 1 (tolerance.cpp): the primary edges on their curve whose quadratic form
+// would be beyond Options::tolerance are split as step 1 splits; returns the number of splits.
+int split_beyond_tolerance(TriMesh& m, const mesh::Constraints& c, const Options& o);
 
 // Whether the edge can follow its curve: both ends lie on it at their recorded parameters.
 bool followable(const TriMesh& m, int a, int b);
@@ -62,19 +68,28 @@ class Builder {
   Vec2& at(int v) { return out_.nodes[vertex_node_[v]]; }
   const Vec2& at(int v) const { return out_.nodes[vertex_node_[v]]; }
 
+  // Triangle t's nodes: order 3's ten, order 2's six.
   geometry::P3Nodes nodes_of(int t) const {
     geometry::P3Nodes p;
     for (int i = 0; i < 10; ++i) p[i] = out_.nodes[out_.triangles[t][i]];
     return p;
   }
-  // Triangle t's curved energy (geometry::p3_max_amips): exact below `bound`, at least `bound`
-  // otherwise.
+  geometry::P2Nodes p2_nodes_of(int t) const {
+    geometry::P2Nodes p;
+    for (int i = 0; i < 6; ++i) p[i] = out_.nodes[out_.triangles[t][i]];
+    return p;
+  }
+  bool quadratic() const { return o_.order == 2; }
+  // Triangle t's curved energy (geometry::p3_max_amips, p2_max_amips): exact below `bound`, at
+  // least `bound` otherwise.
   double energy(int t, double bound = std::numeric_limits<double>::infinity()) const {
-    return geometry::p3_max_amips(nodes_of(t), bound);
+    return quadratic() ? geometry::p2_max_amips(p2_nodes_of(t), bound) : geometry::p3_max_amips(nodes_of(t), bound);
   }
 
   // ----- curve.cpp ------------------------------------------------------------------------------
+  void place_nodes();
   void finish();
+  void record_statistics();
 
   // ----- nodes.cpp: steps 2 and 3 ---------------------------------------------------------------
   void add_edge(int a, int b);
@@ -86,6 +101,7 @@ class Builder {
   int curved_edge_of(const mesh::Triangle& tri) const;
   geometry::P3Nodes element(const mesh::Triangle& tri) const;
   bool choose_centre(geometry::P3Nodes& p, int& choice, double& scaled) const;
+  geometry::P2Nodes p2_element(const mesh::Triangle& tri) const;  // order 2's nodes_of, by corners
   double badness(int t) const;
   // Returns the chosen centre's energy(t) when every lattice point's det J is positive there
   // (badness is then that energy), else NaN.
@@ -182,6 +198,13 @@ class Builder {
                                            const mesh::CollapseTest* also = nullptr);
   void coarsen();
   void settle_vertex(int v, const std::vector<int>& triangles);
+  // The split of (a, b) at the middle of its parameter interval (mesh::split_edge), or −1 where
+  // a new primary vertex would be left off its curve (the mesh is then changed: the caller's
+  // try_operation takes it back).
+  int split_on_curve(int a, int b);
+  // try_operation with that split, kept when every triangle it changes is certified, whatever
+  // their energy (order 2's meet_tolerance).
+  bool split_certified(int a, int b);
   bool place_triangle(int t, double* known_energy = nullptr);
 
   // ----- guard.cpp: steps 4 and 5, moves kept only if no worse -------------------------------
@@ -204,6 +227,17 @@ class Builder {
   double worst_of(const std::vector<int>& triangles, double bound = std::numeric_limits<double>::infinity()) const;
   bool keep_unless_worse(const std::vector<int>& centres, const std::function<bool()>& move,
                          const std::function<void()>& undo);
+
+  // ----- tolerance.cpp: order 2 ----------------------------------------------------------------
+  // The distance from primary edge (a, b) to its curve: quadratic_deviation where the edge is on
+  // its curve, else edge_distance of its nodes (0 for order 3 on its curve).
+  double deviation(int a, int b) const;
+  // quadratic_deviation of the edge if it follows its curve (or will: followable), else 0.
+  double curved_deviation(int a, int b) const;
+  // Whether a primary edge that follows its curve is beyond the tolerance there (order 2).
+  bool beyond_tolerance_if_curved(int a, int b) const;
+  // The last step of order 2: splits of the edges still beyond the tolerance; returns how many.
+  int meet_tolerance();
 
   // ----- fit.cpp: step 5 ------------------------------------------------------------------------
   void fit(int a, int b);

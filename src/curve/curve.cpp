@@ -11,6 +11,46 @@ namespace curvemesh::curve {
 namespace detail {
 
 void Builder::run() {
+  place_nodes();
+  // Step 4: smoothing, then the local operations, where the curved triangles are worse than the
+  // stop energy.
+  s_.max_amips_before_smoothing = 0;
+  for (std::size_t t = 0; t < out_.triangles.size(); ++t)
+    s_.max_amips_before_smoothing = std::max(s_.max_amips_before_smoothing, energy(static_cast<int>(t)));
+  const TriMesh& m = out_.linear;
+  // Primary vertices the linear optimization could not bring onto their curve (Fig. 8): now
+  // that edges bend, they may get there. A projection is kept only if nothing around it ends
+  // worse (project): one refused is tried again after the smoothing and after the operations,
+  // which change what is around it.
+  const auto project_late = [&] {
+    for (int v = 0; v < m.vertex_count(); ++v)
+      if (!m.triangles_of(v).empty() && m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve)
+        s_.late_projections += project(v);
+  };
+  project_late();
+  smooth();
+  project_late();
+  // Step 5: the primary edges still straight, on their curve where nothing around them ends
+  // worse, else fitted (fit). An earlier edge's repair may have removed a later one.
+  for (const auto& [edge, f] : m.sorted_features()) {
+    if (f.kind != EdgeKind::primary || !m.feature(edge[0], edge[1])) continue;
+    const auto it = curved_.find(mesh::edge_key(edge[0], edge[1]));
+    if (it != curved_.end() && !it->second && followable(m, edge[0], edge[1])) fit(edge[0], edge[1]);
+  }
+  improve();
+  project_late();
+  coarsen();
+  // Order 2: the edges a late projection, a fit or a straightened edge left beyond the tolerance
+  // are split, whatever the energy; step 4 then improves what the splits made worse.
+  if (meet_tolerance() > 0) improve();
+  finish();
+  record_statistics();
+}
+
+// Steps 2 and 3: the nodes of every edge (on the curve where it can follow it), then each
+// triangle with a curved edge certified (order 3: with the first certified centre candidate),
+// its curved edge straightened where none is; then every triangle's nodes.
+void Builder::place_nodes() {
   const TriMesh& m = out_.linear;
   out_.nodes.assign(m.vertex_count(), Vec2::Zero());
   vertex_node_.resize(m.vertex_count());
@@ -34,6 +74,14 @@ void Builder::run() {
     const auto& tri = m.triangle(order[k]);
     const int curved = curved_edge_of(tri);
     if (curved < 0) continue;
+    if (quadratic()) {  // no centre to choose: the element is its edges'
+      geometry::JacobianCheckOptions check;
+      check.max_depth = o_.certificate_depth;
+      const auto cert = geometry::certify_jacobian(p2_element(tri), check);
+      if (cert.verdict == geometry::JacobianVerdict::positive) scaled[k] = cert.scaled_jacobian;
+      else straighten(tri[curved], tri[(curved + 1) % 3]);
+      continue;
+    }
     geometry::P3Nodes p = element(tri);
     if (choose_centre(p, choice[k], scaled[k])) centre[k] = p[9];
     else straighten(tri[curved], tri[(curved + 1) % 3]);
@@ -43,6 +91,12 @@ void Builder::run() {
   for (std::size_t k = 0; k < order.size(); ++k) {
     const auto& tri = m.triangle(order[k]);
     std::array<int, 10> ids = corner_and_edge_nodes(tri);
+    if (quadratic()) {
+      out_.triangles.push_back(ids);
+      if (curved_edge_of(tri) >= 0) scaled_[k] = scaled[k];
+      else scaled_[k] = certify(static_cast<int>(k)).value_or(-1.0);  // its middles are rounded
+      continue;
+    }
     ids[9] = static_cast<int>(out_.nodes.size());
     if (curved_edge_of(tri) >= 0) {
       s_.alternative_centres += choice[k] > 0;
@@ -58,34 +112,12 @@ void Builder::run() {
     }
     out_.triangles.push_back(ids);
   }
-  // Step 4: smoothing, then the local operations, where the curved triangles are worse than the
-  // stop energy.
-  s_.max_amips_before_smoothing = 0;
-  for (std::size_t t = 0; t < out_.triangles.size(); ++t)
-    s_.max_amips_before_smoothing = std::max(s_.max_amips_before_smoothing, energy(static_cast<int>(t)));
-  // Primary vertices the linear optimization could not bring onto their curve (Fig. 8): now
-  // that edges bend, they may get there. A projection is kept only if nothing around it ends
-  // worse (project): one refused is tried again after the smoothing and after the operations,
-  // which change what is around it.
-  const auto project_late = [&] {
-    for (int v = 0; v < m.vertex_count(); ++v)
-      if (!m.triangles_of(v).empty() && m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve)
-        s_.late_projections += project(v);
-  };
-  project_late();
-  smooth();
-  project_late();
-  // Step 5: the primary edges still straight, on their curve where nothing around them ends
-  // worse, else fitted (fit). An earlier edge's repair may have removed a later one.
-  for (const auto& [edge, f] : m.sorted_features()) {
-    if (f.kind != EdgeKind::primary || !m.feature(edge[0], edge[1])) continue;
-    const auto it = curved_.find(mesh::edge_key(edge[0], edge[1]));
-    if (it != curved_.end() && !it->second && followable(m, edge[0], edge[1])) fit(edge[0], edge[1]);
-  }
-  improve();
-  project_late();
-  coarsen();
-  finish();
+}
+
+// After finish(): the energies, validity and wedges of the triangles, the feature lines and the
+// distances of the primary edges from their curves.
+void Builder::record_statistics() {
+  const TriMesh& m = out_.linear;
   std::vector<double> amips(out_.triangles.size());
   for (std::size_t t = 0; t < out_.triangles.size(); ++t) {
     const double e = amips[t] = energy(static_cast<int>(t));
@@ -101,9 +133,10 @@ void Builder::run() {
   // Feature lines and edge statistics.
   for (const auto& [edge, f] : m.sorted_features()) {
     const auto [first, second] = edge_nodes(edge[0], edge[1]);
-    out_.lines.push_back({{edge[0], edge[1], first, second}, f.kind});
+    out_.lines.push_back({{edge[0], edge[1], first, quadratic() ? -1 : second}, f.kind});
     if (f.kind != EdgeKind::primary) continue;
     ++s_.primary_edges;
+    if (quadratic() && o_.tolerance > 0 && deviation(edge[0], edge[1]) > o_.tolerance) ++s_.beyond_tolerance;
     const auto key = mesh::edge_key(edge[0], edge[1]);
     const double distance = distance_to_curve(edge[0], edge[1], f, first, second);
     if (curved_.at(key)) {
@@ -145,14 +178,16 @@ void Builder::finish() {
     if (remap[v] >= 0) node_id[vertex_node_[v]] = remap[v], ++next;
   std::vector<char> used(out_.nodes.size(), 0);
   for (const auto& ids : triangles)
-    for (int id : ids) used[id] = 1;
+    for (int id : ids)
+      if (id >= 0) used[id] = 1;
   for (std::size_t id = 0; id < out_.nodes.size(); ++id)
     if (used[id] && node_id[id] < 0) node_id[id] = next++;
   std::vector<Vec2> nodes(next);
   for (std::size_t id = 0; id < out_.nodes.size(); ++id)
     if (node_id[id] >= 0) nodes[node_id[id]] = out_.nodes[id];
   for (auto& ids : triangles)
-    for (int& id : ids) id = node_id[id];
+    for (int& id : ids)
+      if (id >= 0) id = node_id[id];
   std::unordered_map<std::uint64_t, int> first_node;
   std::unordered_map<std::uint64_t, bool> curved;
   std::unordered_set<std::uint64_t> fitted;
@@ -179,7 +214,9 @@ CurvedMesh curve(mesh::TriMesh linear, const mesh::Constraints& constraints, con
   const auto start = std::chrono::steady_clock::now();
   Stats s;
   CurvedMesh out;
+  out.order = options.order;
   s.split_triangles = detail::split_until_one_primary_edge(linear, constraints);
+  if (options.order == 2) s.tolerance_splits = detail::split_beyond_tolerance(linear, constraints, options);
   linear.compact();
   out.linear = std::move(linear);
   detail::Builder(out, constraints, options, s).run();

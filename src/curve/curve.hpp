@@ -34,6 +34,14 @@
 //     its curve, no new edge is longer than 5/3 l and the worst energy of what changed is at
 //     most max(Options::coarsen_amips, the worst it replaces).
 // High-order nodes are shared: one per edge position, one centre per triangle.
+//
+// Order 2 (Options::order) makes the same steps on quadratic (6-node) triangles: a primary edge on
+// its curve has its one inner node at the curve's point at the middle of its parameter interval,
+// every other edge its middle; there is no centre node to choose or smooth, and the certificate
+// is that of the degree-2 Jacobian determinant (geometry/p2_triangle). Such an edge is within
+// quadratic_deviation of its curve, not on it: where that is above Options::tolerance the edge is
+// split, on the linear mesh after step 1 and, for edges that a later step left there, by step 4's
+// split at the end; no step may make a primary edge on its curve beyond it otherwise.
 #include <array>
 #include <functional>
 #include <numbers>
@@ -49,6 +57,13 @@ using geometry::Vec2;
 
 struct Options {
   int certificate_depth = 10;  // subdivision levels of the Jacobian certificate
+  // The elements' order, 3 or 2 (pipeline::Parameters::order).
+  int order = 3;
+  // Order 2: the largest distance allowed between a primary edge on its curve and the curve
+  // (quadratic_deviation); a primary edge no longer than min_split_length is not split for it.
+  // Both from pipeline::Parameters (the tolerance, l_m); a tolerance of 0 allows any distance.
+  double tolerance = 0;
+  double min_split_length = 0;
   // Step 4 (§4.2): smoothing and the local operations on the curved mesh stop once every
   // triangle's AMIPS energy is at most this, or after this many passes (of each); both from
   // pipeline::Parameters.
@@ -82,7 +97,10 @@ struct Stats {
   int alternative_centres = 0;  // curved triangles certified only with another centre than the first
   double min_scaled_jacobian = 1;  // over curved triangles (geometry::JacobianCertificate)
   int invalid_triangles = 0;    // triangles whose map is not certified (0 in a mesh that is written)
-  double max_distance = 0;      // largest distance from a fitted or straight primary edge to its curve
+  // The largest distance from a primary edge to its curve (the edge's point and the curve's at
+  // equal fractions of the edge): order 3, from a fitted or straight one (the others are the
+  // curve); order 2, from any.
+  double max_distance = 0;
   double mean_fit_distance = 0;  // mean distance from a fitted edge to its curve
   // Quality of the curved mesh: the conformal AMIPS energy of each triangle's map, its largest
   // value over the triangle (geometry::p3_max_amips); the largest and the mean over triangles.
@@ -98,21 +116,47 @@ struct Stats {
   int repaired_moves = 0;
   int refused_moves = 0;
   WedgeStats wedges;                      // the sharp wedges at fixed vertices, and the rest
+  // Order 2: primary edges split so that their quadratic form is within the tolerance of their
+  // curve, and the primary edges left farther than it (0 unless an edge could not be split).
+  int tolerance_splits = 0;
+  int beyond_tolerance = 0;
   double seconds = 0;
 };
 
-// A feature edge of the curved mesh: its four nodes (ends first, then the inner two in order).
+// A feature edge of the curved mesh: its order + 1 nodes (ends first, then the inner ones in
+// order; the rest −1).
 struct FeatureLine {
   std::array<int, 4> nodes;
   mesh::EdgeKind kind;
 };
 
 struct CurvedMesh {
+  int order = 3;                    // 3 (10-node triangles, 4-node lines) or 2 (6-node, 3-node)
   mesh::TriMesh linear;             // the corners, tags and features after step 1
   std::vector<Vec2> nodes;          // vertices first (same indices as `linear`), then the rest
-  std::vector<std::array<int, 10>> triangles;  // Gmsh's 10-node order, counter-clockwise corners
+  // Per triangle its (order + 1)(order + 2) / 2 nodes in Gmsh's order (the rest −1):
+  // counter-clockwise corners, the inner nodes of edges 0→1, 1→2, 2→0, then order 3's centre.
+  std::vector<std::array<int, 10>> triangles;
   std::vector<FeatureLine> lines;   // every tagged edge, deterministic order
 };
+
+// The largest distance between a section's curve over [ta, tb] and the quadratic that
+// interpolates it at ta, tb and their middle (an order-2 edge on its curve), at equal parameters.
+// The curve is a cubic in the edge's parameter s ∈ [0, 1] and the quadratic interpolates it at
+// s = 0, ½, 1, so their difference is w s (s − ½)(s − 1) with w the cubic's third difference
+// P3 − 3P2 + 3P1 − P0 over [ta, tb]: at most |w| √3 / 36, reached. The distance between the edge
+// and the curve as sets is at most this.
+double quadratic_deviation(const mesh::SectionCurve& curve, double ta, double tb);
+
+// The distance from a primary edge to its curve, as --stats reports it for every order: the edge
+// (the polynomial through `nodes`, its two ends then its inner nodes, at equal steps of its
+// parameter) at 33 points, each to the nearest point of the curve that Newton's method finds from
+// the curve's point at the same fraction of the edge's parameter interval [ta, tb] (any point of
+// the curve bounds the distance from above); the largest.
+double edge_distance(const std::vector<Vec2>& nodes, const mesh::SectionCurve& curve, double ta, double tb);
+// Its largest value over the primary edges of a straight mesh, and of a curved one.
+double max_edge_distance(const mesh::TriMesh& linear, const mesh::Constraints& constraints);
+double max_edge_distance(const CurvedMesh& mesh, const mesh::Constraints& constraints);
 
 // Where tagged lines (curves, secondary lines, the box) leave a fixed vertex at a small angle,
 // the triangles between them cannot all be good: k triangles filling a wedge of angle w are at
@@ -120,8 +164,8 @@ struct CurvedMesh {
 // that best value for the best k (6.75 at 10°, 13.3 at 5°, 20 at about 3.3°).
 double wedge_amips_bound(double wedge);
 
-// The wedges of a finished curved mesh (corner directions from the P3 nodes), with `amips` each
-// triangle's energy (geometry::p3_max_amips) and stop_amips the curved stop energy.
+// The wedges of a finished curved mesh (corner directions from its nodes), with `amips` each
+// triangle's energy (geometry::p3_max_amips, p2_max_amips) and stop_amips the curved stop energy.
 WedgeStats wedges(const CurvedMesh& mesh, const std::vector<double>& amips, double stop_amips);
 
 // `diagonal` is the input's bounding-box diagonal d. The linear mesh must be valid (the output of

@@ -19,6 +19,11 @@ Vec2 edge_point(const Vec2& p0, const Vec2& p1, const Vec2& p2, const Vec2& p3, 
   return l0 * p0 + l1 * p1 + l2 * p2 + l3 * p3;
 }
 
+// The quadratic through p0, m, p1 at s = 0, 1/2, 1 (a P2 edge), at s.
+Vec2 edge_point(const Vec2& p0, const Vec2& m, const Vec2& p1, double s) {
+  return (1 - s) * (1 - 2 * s) * p0 + 4 * s * (1 - s) * m + s * (2 * s - 1) * p1;
+}
+
 }  // namespace
 
 // §4.2 step 5 for primary edge (a, b), whose triangles cannot be certified with the edge on its
@@ -128,7 +133,7 @@ int Builder::fitted_edge_of(const mesh::Triangle& tri) const {
 }
 
 // An upper bound of the distance from the edge to its curve: the edge's point and the curve's
-// point at the same fraction s of the edge (17 samples).
+// point at the same fraction s of the edge (17 samples). Order 2: `first` is the middle node.
 double Builder::distance_to_curve(int a, int b, const mesh::EdgeFeature& f, int first, int second) const {
   const mesh::SectionCurve& curve = c_.sections[f.source];
   const auto [ta, tb] = parameters(f, a, b);
@@ -136,7 +141,8 @@ double Builder::distance_to_curve(int a, int b, const mesh::EdgeFeature& f, int 
   double worst = 0;
   for (int i = 0; i <= 16; ++i) {
     const double s = i / 16.0;
-    worst = std::max(worst, (edge_point(p0, p1, p2, p3, s) - curve.eval(ta + s * (tb - ta))).norm());
+    const Vec2 x = quadratic() ? edge_point(p0, p1, p3, s) : edge_point(p0, p1, p2, p3, s);
+    worst = std::max(worst, (x - curve.eval(ta + s * (tb - ta))).norm());
   }
   return worst;
 }

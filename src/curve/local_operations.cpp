@@ -68,11 +68,7 @@ int Builder::improve_triangle(int t) {
         return 1;
       }
     }
-  const auto split = [&](int a, int b) {
-    const int mid = mesh::split_edge(m, c_, a, b, std::numeric_limits<double>::infinity());
-    // A primary vertex left on the chord would leave its curve's edges straight.
-    return mid >= 0 && !(m.tag(mid).kind == mesh::VertexKind::primary && !m.tag(mid).on_curve) ? mid : -1;
-  };
+  const auto split = [&](int a, int b) { return split_on_curve(a, b); };
   // A fixed vertex where curves meet: every edge there split at once, its free neighbours then
   // moved. Two curved edges leaving a vertex have at least two triangles between them (a
   // triangle has one curved edge at most); where the curves bend towards each other, their
@@ -242,6 +238,25 @@ bool Builder::try_operation(const std::vector<int>& before, const Operation& ope
   return true;
 }
 
+int Builder::split_on_curve(int a, int b) {
+  TriMesh& m = out_.linear;
+  const int mid = mesh::split_edge(m, c_, a, b, std::numeric_limits<double>::infinity());
+  // A primary vertex left on the chord would leave its curve's edges straight.
+  return mid >= 0 && !(m.tag(mid).kind == mesh::VertexKind::primary && !m.tag(mid).on_curve) ? mid : -1;
+}
+
+bool Builder::split_certified(int a, int b) {
+  TriMesh& m = out_.linear;
+  return try_operation(
+      m.edge_triangles(a, b),
+      [&]() -> std::optional<std::vector<int>> {
+        const int mid = split_on_curve(a, b);
+        if (mid < 0) return std::nullopt;
+        return m.triangles_of(mid);
+      },
+      {}, std::numeric_limits<double>::infinity());
+}
+
 // A vertex made by a split moves (move_corner), then the centres of `triangles` do.
 void Builder::settle_vertex(int v, const std::vector<int>& triangles) {
   move_corner(v);
@@ -249,15 +264,18 @@ void Builder::settle_vertex(int v, const std::vector<int>& triangles) {
 }
 
 // Gives triangle t (changed by an operation) its nodes: its edges' (made where new), a new
-// centre. False if it has two primary edges (step 1 gave every triangle at most one).
+// centre (none for order 2). False if it has two primary edges (step 1 gave every triangle at
+// most one).
 bool Builder::place_triangle(int t, double* known_energy) {
   const TriMesh& m = out_.linear;
   const mesh::Triangle tri = m.triangle(t);
   if (primary_edges_of(m, tri) > 1) return false;
   for (int i = 0; i < 3; ++i) add_edge(tri[i], tri[(i + 1) % 3]);
   std::array<int, 10> ids = corner_and_edge_nodes(tri);
-  ids[9] = static_cast<int>(out_.nodes.size());
-  out_.nodes.push_back((at(tri[0]) + at(tri[1]) + at(tri[2])) / 3);
+  if (!quadratic()) {
+    ids[9] = static_cast<int>(out_.nodes.size());
+    out_.nodes.push_back((at(tri[0]) + at(tri[1]) + at(tri[2])) / 3);
+  }
   out_.triangles[t] = ids;
   const double e = curved_edge_of(tri) >= 0 ? choose_centre_of(t) : std::numeric_limits<double>::quiet_NaN();
   if (known_energy) *known_energy = e;
@@ -279,6 +297,14 @@ std::optional<std::vector<int>> Builder::collapse(int from, int to, const mesh::
   if (!(also ? mesh::collapse_edge(m, constraints, from, to, unbounded, *also)
              : mesh::collapse_edge(m, constraints, from, to, unbounded)))
     return std::nullopt;
+  // Order 2: an edge merged along its curve covers a longer interval, and may be beyond the
+  // tolerance where the two were not.
+  if (quadratic())
+    for (int u : kept)
+      for (int i = 0; i < 3; ++i)
+        if (const int a = m.triangle(u)[i], b = m.triangle(u)[(i + 1) % 3];
+            is_primary(m, a, b) && beyond_tolerance_if_curved(a, b))
+          return std::nullopt;
   return kept;
 }
 

@@ -1,5 +1,6 @@
 // Steps 2 and 3 of curve(): the P3 nodes (edge nodes on the curve or at thirds of the chord,
-// centres), the Jacobian certificate of a triangle, and straightening an edge that fails it.
+// centres) or the P2 nodes (an edge's middle node on the curve or at the chord's middle), the
+// Jacobian certificate of a triangle, and straightening an edge that fails it.
 #include <Eigen/LU>
 
 #include "curve/builder.hpp"
@@ -23,7 +24,7 @@ void Builder::add_edge(int a, int b) {
   const int lo = std::min(a, b), hi = std::max(a, b);
   first_node_[key] = static_cast<int>(out_.nodes.size());
   out_.nodes.push_back(Vec2::Zero());
-  out_.nodes.push_back(Vec2::Zero());
+  if (!quadratic()) out_.nodes.push_back(Vec2::Zero());
   const bool curved = followable(out_.linear, lo, hi);
   curved_[key] = curved;
   if (curved) place_on_curve(lo, hi); else place_straight(lo, hi);
@@ -32,15 +33,26 @@ void Builder::add_edge(int a, int b) {
 void Builder::place_straight(int lo, int hi) {
   const int n = first_node_.at(mesh::edge_key(lo, hi));
   const Vec2 &a = at(lo), &b = at(hi);
+  if (quadratic()) {
+    out_.nodes[n] = (a + b) / 2;
+    return;
+  }
   out_.nodes[n] = (2 * a + b) / 3;
   out_.nodes[n + 1] = (a + 2 * b) / 3;
 }
 
-// App. C: the curve at 1/3 and 2/3 of the edge's parameter interval.
+// App. C: the curve at 1/3 and 2/3 of the edge's parameter interval, where the cubic map then
+// reproduces the curve exactly. Order 2: the curve at the middle of the interval, where the
+// quadratic's distance from the curve is smallest along the parameter (quadratic_deviation: the
+// difference is odd about the middle, and moving the node adds an even term to it).
 void Builder::place_on_curve(int lo, int hi) {
   const mesh::EdgeFeature& f = *out_.linear.feature(lo, hi);
   const mesh::SectionCurve& curve = c_.sections[f.source];
   const int n = first_node_.at(mesh::edge_key(lo, hi));
+  if (quadratic()) {
+    out_.nodes[n] = curve.eval(0.5 * (f.t_lo + f.t_hi));
+    return;
+  }
   out_.nodes[n] = curve.eval((2 * f.t_lo + f.t_hi) / 3);
   out_.nodes[n + 1] = curve.eval((f.t_lo + 2 * f.t_hi) / 3);
 }
@@ -53,21 +65,27 @@ void Builder::straighten(int a, int b) {
 }
 
 // The node ids of a triangle's corners and edges in Gmsh's order (the centre, ids[9], is left
-// to the caller).
+// to the caller). Order 2: the corners and the edges' middle nodes, the rest −1.
 std::array<int, 10> Builder::corner_and_edge_nodes(const mesh::Triangle& tri) const {
   std::array<int, 10> ids{};
+  if (quadratic()) ids.fill(-1);
   for (int i = 0; i < 3; ++i) {
     ids[i] = vertex_node_[tri[i]];
     const auto [first, second] = edge_nodes(tri[i], tri[(i + 1) % 3]);
+    if (quadratic()) {
+      ids[3 + i] = first;
+      continue;
+    }
     ids[3 + 2 * i] = first;
     ids[4 + 2 * i] = second;
   }
   return ids;
 }
 
-// The two nodes of edge (a, b) in the order from a to b.
+// The two nodes of edge (a, b) in the order from a to b; order 2: its middle node twice.
 std::pair<int, int> Builder::edge_nodes(int a, int b) const {
   const int n = first_node_.at(mesh::edge_key(a, b));
+  if (quadratic()) return {n, n};
   return a < b ? std::pair{n, n + 1} : std::pair{n + 1, n};
 }
 
@@ -84,6 +102,13 @@ geometry::P3Nodes Builder::element(const mesh::Triangle& tri) const {
   geometry::P3Nodes p;
   for (int i = 0; i < 9; ++i) p[i] = out_.nodes[ids[i]];
   p[9] = (p[0] + p[1] + p[2]) / 3;
+  return p;
+}
+
+geometry::P2Nodes Builder::p2_element(const mesh::Triangle& tri) const {
+  const std::array<int, 10> ids = corner_and_edge_nodes(tri);
+  geometry::P2Nodes p;
+  for (int i = 0; i < 6; ++i) p[i] = out_.nodes[ids[i]];
   return p;
 }
 
@@ -111,7 +136,8 @@ bool Builder::choose_centre(geometry::P3Nodes& p, int& choice, double& scaled) c
 namespace {
 
 // Badness from the lattice values of nodes p (see Builder::badness).
-double badness_of(const geometry::P3Nodes& p, const geometry::P3LatticeValues& v) {
+template <class Nodes>
+double badness_of(const Nodes& p, const geometry::P3LatticeValues& v) {
   if (v.min_det > 0) return v.max_amips;
   double side = 0;
   for (int i = 0; i < 3; ++i) side = std::max(side, (p[i] - p[(i + 1) % 3]).squaredNorm());
@@ -124,13 +150,22 @@ double badness_of(const geometry::P3Nodes& p, const geometry::P3LatticeValues& v
 // every point of the order-6 lattice, else 1e12 less the smallest det J there over the squared
 // longest side (lower is better either way; only a certificate decides validity).
 double Builder::badness(int t) const {
+  if (quadratic()) {
+    const geometry::P2Nodes p = p2_nodes_of(t);
+    return badness_of(p, geometry::p2_lattice_values(p));
+  }
   const geometry::P3Nodes p = nodes_of(t);
   return badness_of(p, geometry::p3_lattice_values(p));
 }
 
 // The centre of triangle t (its edge nodes placed) among the candidates: the lowest badness.
 // p3_lattice_values's max_amips is p3_max_amips's value, bit for bit (same lattice, same order).
+// Order 2 has no centre node: only the energy, as for a chosen centre.
 double Builder::choose_centre_of(int t) {
+  if (quadratic()) {
+    const geometry::P3LatticeValues v = geometry::p2_lattice_values(p2_nodes_of(t));
+    return v.min_det > 0 ? v.max_amips : std::numeric_limits<double>::quiet_NaN();
+  }
   geometry::P3Nodes q = nodes_of(t);
   Vec2& centre = out_.nodes[out_.triangles[t][9]];
   double best = std::numeric_limits<double>::infinity();
@@ -154,7 +189,8 @@ double Builder::choose_centre_of(int t) {
 std::optional<double> Builder::certify(int t) const {
   geometry::JacobianCheckOptions check;
   check.max_depth = o_.certificate_depth;
-  const auto result = geometry::certify_jacobian(nodes_of(t), check);
+  const auto result = quadratic() ? geometry::certify_jacobian(p2_nodes_of(t), check)
+                                  : geometry::certify_jacobian(nodes_of(t), check);
   if (result.verdict != geometry::JacobianVerdict::positive) return std::nullopt;
   return result.scaled_jacobian;
 }
@@ -175,7 +211,8 @@ bool Builder::certify_all(const std::vector<int>& triangles) {
 Builder::Snapshot Builder::snapshot(const std::vector<int>& triangles) const {
   Snapshot saved;
   for (int t : triangles)
-    for (int id : out_.triangles[t]) saved.push_back({id, out_.nodes[id]});
+    for (int id : out_.triangles[t])
+      if (id >= 0) saved.push_back({id, out_.nodes[id]});
   return saved;
 }
 

@@ -60,8 +60,9 @@ int Builder::move_corner(int v) {
 
 // Places the nodes that depend on corner v's position (and, on a curve, on its parameter): v,
 // the inner nodes of its edges (curved ones on their curve, at thirds of their parameter
-// interval; straight ones at thirds), and the centres of its triangles (straight: the
-// centroid; curved: the candidate of lowest badness, certified later).
+// interval; straight ones at thirds; order 2: at the middles), and the centres of its triangles
+// (straight: the centroid; curved: the candidate of lowest badness, certified later; order 2 has
+// none).
 void Builder::place_corner(int v, const Vec2& p) {
   at(v) = p;
   const TriMesh& m = out_.linear;
@@ -73,11 +74,14 @@ void Builder::place_corner(int v, const Vec2& p) {
       if (a != v && b != v) continue;
       if (curved_.at(mesh::edge_key(a, b))) {
         place_on_curve(std::min(a, b), std::max(a, b));
+      } else if (quadratic()) {
+        place_straight(std::min(a, b), std::max(a, b));
       } else {
         out_.nodes[ids[3 + 2 * i]] = (2 * at(a) + at(b)) / 3;
         out_.nodes[ids[4 + 2 * i]] = (at(a) + 2 * at(b)) / 3;
       }
     }
+    if (quadratic()) continue;
     if (curved_edge_of(tri) < 0) {
       out_.nodes[ids[9]] = (at(tri[0]) + at(tri[1]) + at(tri[2])) / 3;
       continue;
@@ -137,8 +141,16 @@ int Builder::smooth_curve_corner(int v) {
   };
   const mesh::SectionCurve& curve = c_.sections[tag0.section];
   const double lo = std::min(n.tx, n.ty), hi = std::max(n.tx, n.ty), margin = 1e-3 * (hi - lo);
+  // Order 2: its two edges along the curve stay within the tolerance (or within what they were,
+  // if more).
+  const auto deviation_at = [&](double t) {
+    return std::max(quadratic_deviation(curve, t, n.tx), quadratic_deviation(curve, t, n.ty));
+  };
+  const bool bounded = quadratic() && o_.tolerance > 0;
+  const double allowed = bounded ? std::max(o_.tolerance, deviation_at(tag0.t)) : 0;
   const auto objective = [&](double t, double bound) {
-    if (!(t > lo + margin && t < hi - margin) || !mesh::star_valid_at(m, v, curve.eval(t)))
+    if (!(t > lo + margin && t < hi - margin) || !mesh::star_valid_at(m, v, curve.eval(t)) ||
+        (bounded && deviation_at(t) > allowed))
       return std::numeric_limits<double>::infinity();
     place_on_curve_at(v, n, t);
     const double e = star_worst(v, energy_of, bound);
@@ -267,6 +279,7 @@ int Builder::smooth_corner(int v) {
 }
 
 int Builder::smooth_centre(int t) {
+  if (quadratic()) return 0;  // no centre node: the map is its edges'
   auto& centre = out_.nodes[out_.triangles[t][9]];
   const Vec2 x0 = centre;
   const double before = energy(t);

@@ -32,6 +32,12 @@ double leaving_angle(const Vec2& p0, const Vec2& p1, const Vec2& p2, const Vec2&
   return std::atan2(d.y(), d.x());
 }
 
+// The direction in which a P2 edge (nodes p0, m at 1/2, p1) leaves p0.
+double leaving_angle(const Vec2& p0, const Vec2& m, const Vec2& p1) {
+  const Vec2 d = -3 * p0 + 4 * m - p1;
+  return std::atan2(d.y(), d.x());
+}
+
 double turn(double from, double to) {  // counter-clockwise angle from one direction to another, in [0, 2π)
   double a = std::fmod(to - from, 2 * std::numbers::pi);
   return a < 0 ? a + 2 * std::numbers::pi : a;
@@ -47,16 +53,18 @@ WedgeStats wedges(const CurvedMesh& mesh, const std::vector<double>& amips, doub
   std::vector<double> bound(n, 0.0);
   // For each triangle corner: where its two edges leave the corner (the edge to the next corner
   // and the edge to the previous one), from the P3 nodes (Gmsh's order: edge i has nodes 3 + 2i,
-  // 4 + 2i from corner i to corner i + 1).
+  // 4 + 2i from corner i to corner i + 1) or the P2 ones (edge i has node 3 + i).
   const auto edge_out = [&](std::size_t t, int i) {  // corner i along edge (i, i + 1)
     const auto& ids = mesh.triangles[t];
     const int j = (i + 1) % 3;
+    if (mesh.order == 2) return leaving_angle(mesh.nodes[ids[i]], mesh.nodes[ids[3 + i]], mesh.nodes[ids[j]]);
     return leaving_angle(mesh.nodes[ids[i]], mesh.nodes[ids[3 + 2 * i]], mesh.nodes[ids[4 + 2 * i]],
                          mesh.nodes[ids[j]]);
   };
   const auto edge_in = [&](std::size_t t, int i) {  // corner i along edge (i − 1, i), backwards
     const auto& ids = mesh.triangles[t];
     const int h = (i + 2) % 3;
+    if (mesh.order == 2) return leaving_angle(mesh.nodes[ids[i]], mesh.nodes[ids[3 + h]], mesh.nodes[ids[h]]);
     return leaving_angle(mesh.nodes[ids[i]], mesh.nodes[ids[4 + 2 * h]], mesh.nodes[ids[3 + 2 * h]],
                          mesh.nodes[ids[h]]);
   };

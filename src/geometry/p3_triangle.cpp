@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "geometry/amips.hpp"
+#include "geometry/bernstein_certificate.hpp"
 
 namespace curvemesh::geometry {
 
@@ -107,161 +108,9 @@ P3LatticeValues p3_lattice_values(const P3Nodes& nodes) {
   return out;
 }
 
-namespace {
-
-// ---------------------------------------------------------------------------------------------
-// A double with a rigorous bound on its distance to the exact result of the same computation
-// (running error analysis). kEps is twice the unit roundoff u, so |fl(x ∘ y) − x ∘ y| ≤ u |x ∘ y|
-// ≤ kEps |fl(x ∘ y)|. The bounds are themselves rounded; the comparisons below use twice the
-// bound, which covers that (its relative error is a few u, far below a factor 2). Assumes no
-// overflow or underflow: node coordinates between about 1e-70 and 1e70 in magnitude.
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-
-struct ErrorBounded {
-  double value = 0, error = 0;
-  ErrorBounded() = default;
-  explicit ErrorBounded(int k) : value(k) {}  // small integers are exact
-  ErrorBounded(double v, double e) : value(v), error(e) {}
-  ErrorBounded& operator+=(const ErrorBounded& o);
-};
-
-ErrorBounded rounded(double v, double carried) {
-  return {v, carried + kEps * std::abs(v)};
-}
-ErrorBounded operator+(const ErrorBounded& a, const ErrorBounded& b) {
-  return rounded(a.value + b.value, a.error + b.error);
-}
-ErrorBounded operator-(const ErrorBounded& a, const ErrorBounded& b) {
-  return rounded(a.value - b.value, a.error + b.error);
-}
-ErrorBounded operator*(const ErrorBounded& a, const ErrorBounded& b) {
-  return rounded(a.value * b.value,
-                 std::abs(a.value) * b.error + std::abs(b.value) * a.error + a.error * b.error);
-}
-// |a/b − â/b̂| ≤ (e_a + |â/b̂| e_b) / (|b̂| − e_b) when |b̂| > e_b.
-ErrorBounded operator/(const ErrorBounded& a, const ErrorBounded& b) {
-  const double q = a.value / b.value, margin = std::abs(b.value) - b.error;
-  if (!(margin > 0)) return {q, std::numeric_limits<double>::infinity()};
-  return rounded(q, (a.error + std::abs(q) * b.error) / margin);
-}
-ErrorBounded& ErrorBounded::operator+=(const ErrorBounded& o) {
-  return *this = *this + o;
-}
-
-// Sign decisions: exact on rationals, outside the error bound on ErrorBounded.
-bool certainly_positive(const mpq_class& x) {
-  return sgn(x) > 0;
-}
-bool certainly_nonpositive(const mpq_class& x) {
-  return sgn(x) <= 0;
-}
-double approx(const mpq_class& x) {
-  return x.get_d();
-}
-bool certainly_positive(const ErrorBounded& x) {
-  return x.value > 2 * x.error;
-}
-bool certainly_nonpositive(const ErrorBounded& x) {
-  return x.value + 2 * x.error <= 0;
-}
-double approx(const ErrorBounded& x) {
-  return x.value;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Subdivision of the degree-4 polynomial det J over the reference triangle.
-
-using Coefficients4 = std::array<int, 3>;  // a point of the parent in barycentrics, times 2
-
-// The four sub-triangles cut by the edge midpoints, as points of the parent (barycentrics × 2).
-constexpr std::array<std::array<Coefficients4, 3>, 4> kChildren{{
-    {{{2, 0, 0}, {1, 1, 0}, {1, 0, 1}}},  // at corner 0
-    {{{1, 1, 0}, {0, 2, 0}, {0, 1, 1}}},  // at corner 1
-    {{{1, 0, 1}, {0, 1, 1}, {0, 0, 2}}},  // at corner 2
-    {{{0, 1, 1}, {1, 0, 1}, {1, 1, 0}}},  // the middle one
-}};
-
-constexpr std::array<std::size_t, 3> kCornerIndex{bernstein_index(4, 0, 0), bernstein_index(4, 4, 0),
-                                                  bernstein_index(4, 0, 4)};
-
-// Coefficients of the same polynomial over the sub-triangle q0 q1 q2: the coefficient (i, j, k)
-// is the blossom (polar form) at i copies of q0, j of q1 and k of q2, which de Casteljau's
-// algorithm evaluates by using one of those points at each of its four steps.
-template <class T>
-std::array<T, 15> restrict_to(const std::array<T, 15>& c, const std::array<Coefficients4, 3>& q) {
-  std::array<T, 15> out;
-  for (int k = 0; k <= 4; ++k)
-    for (int j = 0; j + k <= 4; ++j) {
-      std::array<T, 15> net = c;
-      for (int m = 4; m > 0; --m) {
-        // Steps use q0 (i times), then q1 (j times), then q2 (k times).
-        const int step = 4 - m;
-        const auto& w = step < 4 - j - k ? q[0] : step < 4 - k ? q[1] : q[2];
-        for (int kk = 0; kk < m; ++kk)
-          for (int jj = 0; jj + kk < m; ++jj) {
-            T acc(0);
-            if (w[0]) acc += T(w[0]) * net[bernstein_index(m, jj, kk)];
-            if (w[1]) acc += T(w[1]) * net[bernstein_index(m, jj + 1, kk)];
-            if (w[2]) acc += T(w[2]) * net[bernstein_index(m, jj, kk + 1)];
-            net[bernstein_index(m - 1, jj, kk)] = T(acc / T(2));
-          }
-      }
-      out[bernstein_index(4, j, k)] = net[0];
-    }
-  return out;
-}
-
-struct Search {
-  JacobianVerdict verdict = JacobianVerdict::undecided;
-  int subtriangles = 0;
-  double min_corner = std::numeric_limits<double>::infinity();  // smallest det J at a corner seen
-};
-
-// Depth-first search for a sub-triangle with a non-positive corner, skipping those whose
-// coefficients are all positive (det J ≥ min coefficient by the convex hull property).
-template <class T>
-Search certify(const std::array<T, 15>& top, const JacobianCheckOptions& options) {
-  Search s;
-  auto corners_fail = [&s](const std::array<T, 15>& c) {
-    bool fail = false;
-    for (std::size_t i : kCornerIndex) {
-      s.min_corner = std::min(s.min_corner, approx(c[i]));
-      fail = fail || certainly_nonpositive(c[i]);
-    }
-    return fail;
-  };
-  s.verdict = JacobianVerdict::not_positive;  // until the search says otherwise
-  if (corners_fail(top)) return s;
-  std::vector<std::pair<std::array<T, 15>, int>> stack{{top, 0}};
-  bool gave_up = false;
-  while (!stack.empty()) {
-    auto [c, depth] = std::move(stack.back());
-    stack.pop_back();
-    ++s.subtriangles;
-    if (std::all_of(c.begin(), c.end(), [](const T& x) { return certainly_positive(x); })) continue;
-    if (depth >= options.max_depth) {
-      gave_up = true;  // keep looking: a non-positive corner elsewhere still decides
-      continue;
-    }
-    if (s.subtriangles >= options.max_subtriangles) {
-      s.verdict = JacobianVerdict::undecided;
-      return s;
-    }
-    for (const auto& child : kChildren) {
-      auto cc = restrict_to(c, child);
-      if (corners_fail(cc)) return s;
-      stack.emplace_back(std::move(cc), depth + 1);
-    }
-  }
-  s.verdict = gave_up ? JacobianVerdict::undecided : JacobianVerdict::positive;
-  return s;
-}
-
-}  // namespace
-
 JacobianVerdict certify_jacobian_exact(const P3NodesT<mpq_class>& nodes,
                                        const JacobianCheckOptions& options) {
-  return certify(p3_jacobian_det_bernstein(nodes), options).verdict;
+  return detail::certify<4>(p3_jacobian_det_bernstein(nodes), options).verdict;
 }
 
 JacobianVerdict certify_jacobian_exact(const P3Nodes& nodes, const JacobianCheckOptions& options) {
@@ -271,6 +120,7 @@ JacobianVerdict certify_jacobian_exact(const P3Nodes& nodes, const JacobianCheck
 JacobianCertificate certify_jacobian(const P3Nodes& nodes, const JacobianCheckOptions& options) {
   // Relative to node 0: the subtraction's error is relative to the difference, i.e. to the
   // element's size, where absolute coordinates would bring errors relative to the position.
+  using detail::ErrorBounded;
   P3NodesT<ErrorBounded> local;
   P3NodesT<double> local_values;
   for (int i = 0; i < 10; ++i)
@@ -284,7 +134,7 @@ JacobianCertificate certify_jacobian(const P3Nodes& nodes, const JacobianCheckOp
                                             [](const auto& a, const auto& b) { return a.value < b.value; });
   out.min_coefficient = lo->value;
   out.max_coefficient = hi->value;
-  const Search s = certify(top, options);
+  const detail::Search s = detail::certify<4>(top, options);
   out.verdict = s.verdict;
   out.subtriangles = s.subtriangles;
   // min det J estimate: the degree-4 lattice and every sub-triangle corner visited.

@@ -258,7 +258,7 @@ JacobianVerdict certify_jacobian_exact(const P3Nodes& nodes, const JacobianCheck
 
 struct JacobianCertificate {
   JacobianVerdict verdict = JacobianVerdict::undecided;
-  double min_coefficient = 0;  // smallest of the element's 15 coefficients: a lower bound on det J
+  double min_coefficient = 0;  // smallest of the element's coefficients (15; 6 for P2): a lower bound on det J
   double max_coefficient = 0;  // largest of them: an upper bound on det J
   double min_value = 0;        // smallest det J found (15 lattice points, sub-triangle corners):
                                // an upper bound on min det J

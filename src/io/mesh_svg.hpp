@@ -12,9 +12,10 @@
 namespace curvemesh::io {
 
 std::string mesh_svg(const mesh::TriMesh& mesh);
-// The same for a curved mesh: each edge as the SVG cubic Bézier through its four nodes.
+// The same for a curved mesh: each edge as the SVG Bézier through its nodes (cubic: C; quadratic:
+// Q).
 std::string mesh_svg(const curve::CurvedMesh& mesh);
-// A plain mesh (order 1 or 3) with each triangle filled with its colour ("#rrggbb"; empty: not
+// A plain mesh (order 1, 2 or 3) with each triangle filled with its colour ("#rrggbb"; empty: not
 // filled) under its edges: untagged edges grey, lines by their physical tag.
 std::string mesh_svg(const HighOrderMesh& mesh, const std::vector<std::string>& triangle_fill);
 

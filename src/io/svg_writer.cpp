@@ -40,14 +40,26 @@ void SvgWriter::path_start(std::string_view colour) {
 }
 
 void SvgWriter::cubic(const geometry::CubicBezier& c, std::string_view colour) {
-  path_start(colour);
-  for (int i = 0; i < 4; ++i) {
-    if (i == 1) out_ += " C";
+  piece({3, {c.p[0], c.p[1], c.p[2], c.p[3]}}, colour);
+}
+
+void SvgWriter::command(const BezierPiece& c) {
+  out_ += c.degree == 1 ? " L" : c.degree == 2 ? " Q" : " C";
+  for (int i = 1; i <= c.degree; ++i) {
     out_ += ' ';
     number(c.p[i].x());
     out_ += ' ';
     number(c.p[i].y());
   }
+}
+
+void SvgWriter::piece(const BezierPiece& c, std::string_view colour) {
+  path_start(colour);
+  out_ += ' ';
+  number(c.p[0].x());
+  out_ += ' ';
+  number(c.p[0].y());
+  command(c);
   out_ += "\"/>\n";
 }
 
@@ -76,7 +88,7 @@ void SvgWriter::dot(const geometry::Vec2& p, std::string_view colour) {
   out_ += "\"/>\n";
 }
 
-void SvgWriter::filled(const std::vector<geometry::CubicBezier>& boundary, std::string_view fill) {
+void SvgWriter::filled(const std::vector<BezierPiece>& boundary, std::string_view fill) {
   if (boundary.empty()) return;
   out_ += "<path stroke=\"none\" fill=\"";
   out_ += fill;
@@ -84,15 +96,7 @@ void SvgWriter::filled(const std::vector<geometry::CubicBezier>& boundary, std::
   number(boundary[0].p[0].x());
   out_ += ' ';
   number(boundary[0].p[0].y());
-  for (const geometry::CubicBezier& c : boundary) {
-    out_ += " C";
-    for (int i = 1; i < 4; ++i) {
-      out_ += ' ';
-      number(c.p[i].x());
-      out_ += ' ';
-      number(c.p[i].y());
-    }
-  }
+  for (const BezierPiece& c : boundary) command(c);
   out_ += " Z\"/>\n";
 }
 

@@ -20,7 +20,9 @@ constexpr int kVtkFromGmsh[3][10] = {
     {0, 1, 2, 3, 4, 5},
     {0, 1, 2, 3, 4, 5, 6, 7, 8, 9},
 };
-constexpr int kVtkTriangle = 5, kVtkLagrangeTriangle = 69;
+// The cell type per order: VTK_TRIANGLE, VTK_QUADRATIC_TRIANGLE (6 nodes, the same order; read by
+// every VTK reader, Lagrange cells only by newer ones) and VTK_LAGRANGE_TRIANGLE.
+constexpr int kVtkCellType[3] = {5, 22, 69};
 
 std::string number(double v) {
   char buf[32];
@@ -80,7 +82,7 @@ std::string vtu_string(const HighOrderMesh& m, const std::vector<VtuCellScalars>
   t += "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
   for (int tri = 0; tri < triangles; ++tri) t += std::to_string(long(tri + 1) * size) + "\n";
   t += "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-  const std::string type = std::to_string(m.order == 1 ? kVtkTriangle : kVtkLagrangeTriangle) + "\n";
+  const std::string type = std::to_string(kVtkCellType[m.order - 1]) + "\n";
   for (int tri = 0; tri < triangles; ++tri) t += type;
   t += "</DataArray>\n</Cells>\n";
   t += "<CellData Scalars=\"triangle\">\n<DataArray type=\"Int32\" Name=\"triangle\" format=\"ascii\">\n";

@@ -1,7 +1,8 @@
 #pragma once
 // VTK XML UnstructuredGrid (.vtu, ASCII) output of the triangles of a HighOrderMesh, for
-// ParaView and meshio: linear triangles as VTK_TRIANGLE (5), quadratic and cubic ones as
-// VTK_LAGRANGE_TRIANGLE (69), which ParaView draws curved. Cell data: "triangle" (the index of
+// ParaView and meshio: linear triangles as VTK_TRIANGLE (5), quadratic ones as
+// VTK_QUADRATIC_TRIANGLE (22), cubic ones as VTK_LAGRANGE_TRIANGLE (69); ParaView draws both
+// curved. Cell data: "triangle" (the index of
 // the triangle in the mesh), "physical" (its physical tag) and any arrays given; point data: any
 // arrays given (fields of a solution at the nodes). Feature lines
 // are not written. Coordinates with 17 significant digits; the text depends only on the input.

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "geometry/closest_point.hpp"
+#include "geometry/p2_triangle.hpp"
 #include "geometry/p3_triangle.hpp"
 
 namespace curvemesh::pipeline {
@@ -19,30 +20,23 @@ PointT<mpq_class> exact(const Vec2& p) {
   return {mpq_class(p.x()), mpq_class(p.y())};
 }
 
-// The element's map written as a P3 map, exactly: a P1 or P2 map is evaluated at the ten P3
+// A P1 or P3 element's map written as a P3 map, exactly: a P1 map is evaluated at the ten P3
 // reference nodes (rational points), which gives the P3 nodes of the very same map.
 P3NodesT<mpq_class> as_p3(const io::HighOrderMesh& m, std::size_t t) {
-  const int per = m.triangle_size();
   const auto n = m.triangle(static_cast<int>(t));
   P3NodesT<mpq_class> out;
   if (m.order == 3) {
     for (int i = 0; i < 10; ++i) out[i] = exact(m.nodes[n[i]]);
     return out;
   }
-  std::array<PointT<mpq_class>, 6> x;
-  for (int i = 0; i < per; ++i) x[i] = exact(m.nodes[n[i]]);
+  std::array<PointT<mpq_class>, 3> x;
+  for (int i = 0; i < 3; ++i) x[i] = exact(m.nodes[n[i]]);
   for (int i = 0; i < 10; ++i) {
     const mpq_class u(geometry::kP3ReferenceNodesTimes3[i][0], 3),
         v(geometry::kP3ReferenceNodesTimes3[i][1], 3);
-    const mpq_class l0 = 1 - u - v, l1 = u, l2 = v;
-    std::array<mpq_class, 6> w;
-    if (m.order == 1) {
-      w = {l0, l1, l2, 0, 0, 0};
-    } else {  // Gmsh's 6-node triangle: corners, then the middles of edges 0-1, 1-2, 2-0
-      w = {l0 * (2 * l0 - 1), l1 * (2 * l1 - 1), l2 * (2 * l2 - 1), 4 * l0 * l1, 4 * l1 * l2, 4 * l2 * l0};
-    }
+    const std::array<mpq_class, 3> w{1 - u - v, u, v};
     out[i] = {0, 0};
-    for (int k = 0; k < per; ++k)
+    for (int k = 0; k < 3; ++k)
       for (int c = 0; c < 2; ++c) out[i][c] += w[k] * x[k][c];
   }
   return out;
@@ -52,6 +46,20 @@ geometry::P3Nodes to_double(const P3NodesT<mpq_class>& p) {
   geometry::P3Nodes out;
   for (int i = 0; i < 10; ++i) out[i] = Vec2(p[i][0].get_d(), p[i][1].get_d());
   return out;
+}
+
+// The exact verdict and the scaled Jacobian (in doubles) of element t. A quadratic element is
+// decided on its own degree-2 determinant, exactly on the rationals of its nodes as read; a linear
+// or cubic one as a P3 map (degree 4).
+std::pair<geometry::JacobianVerdict, double> certify_element(const io::HighOrderMesh& m, std::size_t t) {
+  if (m.order == 2) {
+    const auto n = m.triangle(static_cast<int>(t));
+    geometry::P2Nodes p;
+    for (int i = 0; i < 6; ++i) p[i] = m.nodes[n[i]];
+    return {geometry::certify_jacobian_exact(geometry::to_exact(p)), geometry::certify_jacobian(p).scaled_jacobian};
+  }
+  const auto p = as_p3(m, t);
+  return {geometry::certify_jacobian_exact(p), geometry::certify_jacobian(to_double(p)).scaled_jacobian};
 }
 
 // A point of line element `l` at s in [0, 1] (its nodes: the ends, then the inner ones in order).
@@ -86,11 +94,10 @@ MeshCheck check_mesh(const io::HighOrderMesh& m) {
   out.triangles = static_cast<std::size_t>(m.triangle_count());
   double min_scaled = INFINITY;
   for (std::size_t t = 0; t < out.triangles; ++t) {
-    const auto p = as_p3(m, t);
-    const auto verdict = geometry::certify_jacobian_exact(p);
+    const auto [verdict, scaled] = certify_element(m, t);
     out.invalid += verdict != geometry::JacobianVerdict::positive;
     out.undecided += verdict == geometry::JacobianVerdict::undecided;
-    min_scaled = std::min(min_scaled, geometry::certify_jacobian(to_double(p)).scaled_jacobian);
+    min_scaled = std::min(min_scaled, scaled);
   }
   out.min_scaled_jacobian = out.triangles ? min_scaled : 0.0;
   return out;

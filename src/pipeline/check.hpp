@@ -18,8 +18,9 @@ struct MeshCheck {
   double min_scaled_jacobian = 0;  // over the elements (0 for a mesh without any)
 };
 
-// Each element's map written exactly as a P3 map (a P1 or P2 map evaluated at the ten P3
-// reference nodes), then certify_jacobian_exact on it; the scaled Jacobian in doubles.
+// Each element's det J decided with certify_jacobian_exact on the rationals of its nodes: a P2
+// element's degree-2 form, a P1 or P3 element's map written exactly as a P3 map (a P1 map
+// evaluated at the ten P3 reference nodes); the scaled Jacobian in doubles.
 MeshCheck check_mesh(const io::HighOrderMesh& mesh);
 
 struct FeatureDistance {

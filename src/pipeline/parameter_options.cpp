@@ -76,9 +76,14 @@ std::vector<ParameterOption> limit_options() {
 std::vector<ParameterOption> mesh_options() {
   return {
       {"--order", "--order", "order", "", "mesh", Kind::integer, 1, 3, false, 0, {},
-       "the elements' order: 3 (curved, cubic 10-node triangles whose edges follow the primary curves) or 1 "
-       "(straight 3-node triangles)",
+       "the elements' order: 3 (curved, cubic 10-node triangles whose edges follow the primary curves), 2 (curved, "
+       "quadratic 6-node triangles whose edges stay within --curve-tolerance of the primary curves) or 1 (straight "
+       "3-node triangles)",
        CURVEMESH_FIELD(order, int)},
+      {"--curve-tolerance", "--curve-tolerance", "curve_tolerance", "", "mesh", Kind::number, 0, kInf, false, 0, {},
+       "with --order 2: the largest distance from an edge on a primary curve to the curve, relative to d; an edge "
+       "farther is split (0: epsilon)",
+       CURVEMESH_FIELD(curve_tolerance_rel, double)},
       {"--linear", "--linear", "linear", "", "mesh", Kind::flag, 0, 1, false, 1, {},
        "make a linear mesh (straight-sided 3-node triangles): --order 1",
        [](const Parameters& p) { return p.order == 1 ? 1.0 : 0.0; },

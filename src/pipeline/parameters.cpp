@@ -52,7 +52,6 @@ void Parameters::validate() const {
     mu << "at least --mu (" << mu_rel << ")";
     refuse("--epsilon", epsilon_rel, mu.str());
   }
-  if (order == 2) refuse("--order", order, "1 or 3");
 }
 
 namespace pipeline {
@@ -80,6 +79,11 @@ Resolved resolve(const Parameters& p, double diagonal) {
   r.optimize.stop_min_angle_deg = p.alpha_deg;  // the target min angle is α
   r.optimize.stop_max_amips = p.stop_amips;
   r.optimize.curved_stop_amips = p.order == 1 ? 0.0 : p.curved_stop_amips;
+  r.curve.order = p.order == 2 ? 2 : 3;
+  // An order-2 edge only approximates its curve: within the secondary features' envelope ε unless
+  // told otherwise, the distance every other feature of the mesh is kept within.
+  r.curve.tolerance = (p.curve_tolerance_rel > 0 ? p.curve_tolerance_rel : p.epsilon_rel) * r.d;
+  r.curve.min_split_length = l.min_edge;
   r.curve.stop_amips = p.curved_stop_amips;
   r.curve.max_smoothing_passes = p.max_curved_passes;
   r.curve.coarsen_edge_length = l.edge;

@@ -52,8 +52,8 @@ Json optimize_json(const optimize::Stats& s) {
           {"exact_vertices_left", s.exact_left}};
 }
 
-Json curve_json(const curve::Stats& s, double d) {
-  return {{"split_triangles", s.split_triangles},
+Json curve_json(const curve::Stats& s, const curve::Options& o, double d) {
+  Json out = {{"split_triangles", s.split_triangles},
           {"primary_edges", s.primary_edges},
           {"curved_edges", s.curved_edges},
           {"fitted_edges", s.fitted_edges},
@@ -81,6 +81,20 @@ Json curve_json(const curve::Stats& s, double d) {
           {"max_distance", s.max_distance},
           {"max_distance_rel", s.max_distance / d},
           {"mean_fit_distance_rel", s.mean_fit_distance / d}};
+  if (o.order == 2) {
+    out["tolerance"] = o.tolerance;
+    out["tolerance_rel"] = o.tolerance / d;
+    out["tolerance_splits"] = s.tolerance_splits;
+    out["beyond_tolerance"] = s.beyond_tolerance;
+  }
+  return out;
+}
+
+// The largest distance from a primary edge to its curve (curve::max_edge_distance), absolute and
+// relative to d.
+void edge_distance_json(Json& mesh, double distance, double d) {
+  mesh["max_edge_distance"] = distance;
+  mesh["max_edge_distance_rel"] = distance / d;
 }
 
 Error invalid(const std::string& message) {
@@ -259,6 +273,35 @@ Source Source::beziers(const std::vector<std::array<geometry::Vec2, 4>>& curves,
 
 namespace {
 
+// §4.2: the linear mesh curved (r.linear moves into r.curved), its statistics. Throws Error
+// (internal) if a triangle could not be certified.
+void curve_stage(Result& r, const std::string& name, const RunOptions& options,
+                 const std::function<void(const std::string&)>& warn) {
+  const auto t = Clock::now();
+  curve::Stats& s = r.curve_stats;
+  const auto report = [&](int pass, int triangles, double max_amips) {
+    if (options.progress) options.progress({Stage::curve, pass, triangles, max_amips});
+  };
+  report(0, r.quality.triangles, r.quality.max_amips);
+  curve::Options c = r.resolved.curve;
+  int pass = 0;
+  if (options.progress) c.on_pass = [&](int above, double max_amips) { report(++pass, above, max_amips); };
+  r.curved = curve::curve(std::move(r.linear), r.constraints, c, &s);
+  r.linear = mesh::TriMesh();
+  Json& stats = r.stats;
+  stats["seconds"]["curve"] = seconds_since(t);
+  stats["curve"] = curve_json(s, c, r.resolved.d);
+  stats["mesh"]["triangles"] = r.curved->triangles.size();
+  edge_distance_json(stats["mesh"], curve::max_edge_distance(*r.curved, r.constraints), r.resolved.d);
+  r.last = Stage::curve;
+  if (s.invalid_triangles > 0)
+    throw internal("internal error: " + name + ": " + std::to_string(s.invalid_triangles) +
+                   " curved triangles could not be certified valid");
+  if (s.beyond_tolerance > 0)
+    warn(std::to_string(s.beyond_tolerance) + " primary edge" + (s.beyond_tolerance == 1 ? " is" : "s are") +
+         " farther than --curve-tolerance from their curve (too short to split, or no split of it is valid)");
+}
+
 Result run_stages(const Source& source, const Parameters& parameters, const RunOptions& options) {
   parameters.validate();
   Result r;
@@ -358,6 +401,9 @@ Result run_stages(const Source& source, const Parameters& parameters, const RunO
   r.quality = optimize::measure(r.linear);
   stats["mesh"] = quality_json(r.quality);
   stats["mesh"]["target_edge_length"] = r.resolved.features.edge;
+  // How far the mesh's edges are from the curves they stand for, whatever its order: here the
+  // chords'; the curved mesh's below.
+  edge_distance_json(stats["mesh"], curve::max_edge_distance(r.linear, r.constraints), r.resolved.d);
 
   if (const auto error = r.linear.structure_error())
     // Every operation checks its result exactly, so this is a bug; refuse rather than give it out.
@@ -372,22 +418,7 @@ Result run_stages(const Source& source, const Parameters& parameters, const RunO
     return r;
   }
 
-  t = Clock::now();
-  curve::Stats& s = r.curve_stats;
-  report(Stage::curve, 0, r.quality.triangles, r.quality.max_amips);
-  curve::Options c = r.resolved.curve;
-  int pass = 0;
-  if (options.progress)
-    c.on_pass = [&](int above, double max_amips) { report(Stage::curve, ++pass, above, max_amips); };
-  r.curved = curve::curve(std::move(r.linear), r.constraints, c, &s);
-  r.linear = mesh::TriMesh();
-  stats["seconds"]["curve"] = seconds_since(t);
-  stats["curve"] = curve_json(s, r.resolved.d);
-  stats["mesh"]["triangles"] = r.curved->triangles.size();
-  r.last = Stage::curve;
-  if (s.invalid_triangles > 0)
-    throw internal("internal error: " + source.name + ": " + std::to_string(s.invalid_triangles) +
-                   " curved triangles could not be certified valid");
+  curve_stage(r, source.name, options, warn);
   paint(r, warn);
   return r;
 }

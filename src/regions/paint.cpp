@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "geometry/p2_triangle.hpp"
 #include "geometry/p3_triangle.hpp"
 #include "regions/groups.hpp"
 #include "regions/winding.hpp"
@@ -15,7 +16,7 @@ namespace curvemesh::regions {
 namespace {
 
 // Points inside triangle t: the images of its centroid and of the points halfway from it to the
-// corners (a certified cubic map is one to one, so they are inside the curved triangle). Four,
+// corners (a certified curved map is one to one, so they are inside the curved triangle). Four,
 // so that a face an outline crosses (where the mesh follows it only within ε) has points on
 // both sides, and one lying exactly on an outline (drawings on an integer grid) has others.
 void add_samples(const io::HighOrderMesh& mesh, int t, std::vector<geometry::Vec2>& out) {
@@ -25,6 +26,12 @@ void add_samples(const io::HighOrderMesh& mesh, int t, std::vector<geometry::Vec
     geometry::P3Nodes nodes;
     for (int i = 0; i < 10; ++i) nodes[i] = mesh.nodes[tri[i]];
     for (const auto& uv : kReference) out.push_back(geometry::p3_map(nodes, uv[0], uv[1]));
+    return;
+  }
+  if (mesh.order == 2) {
+    geometry::P2Nodes nodes;
+    for (int i = 0; i < 6; ++i) nodes[i] = mesh.nodes[tri[i]];
+    for (const auto& uv : kReference) out.push_back(geometry::p2_map(nodes, uv[0], uv[1]));
     return;
   }
   const geometry::Vec2 &a = mesh.nodes[tri[0]], &b = mesh.nodes[tri[1]], &c = mesh.nodes[tri[2]];

@@ -64,6 +64,17 @@ def test_linear_files_are_the_command_lines(name, examples, run_cli, tmp_path):
     assert_same_files(cli, python_files(m, tmp_path))
 
 
+@pytest.mark.parametrize("tolerance", [0, 1e-6])
+def test_quadratic_files_are_the_command_lines(tolerance, examples, run_cli, tmp_path):
+    svg = examples / "open-curves.svg"
+    cli = cli_files(run_cli, tmp_path, svg, "--order", "2", "--curve-tolerance", str(tolerance))
+    m = curvemesh.mesh(svg, order=2, curve_tolerance=tolerance)
+    assert m.order == 2 and m.triangles.shape[1] == 6 and m.lines.shape[1] == 3
+    assert_same_files(cli, python_files(m, tmp_path))
+    assert m.stats["curve"]["tolerance_rel"] == (tolerance or curvemesh.OPTIONS["epsilon"])
+    assert m.stats["mesh"]["max_edge_distance_rel"] <= m.stats["curve"]["tolerance_rel"]
+
+
 @pytest.mark.parametrize("linear", [False, True])
 def test_every_option_as_on_the_command_line(linear, examples, run_cli, tmp_path):
     svg = examples / "overlapping-shapes.svg"
@@ -114,11 +125,11 @@ def test_stats_are_the_command_lines(examples, run_cli, tmp_path):
     assert set(py["seconds"]) == set(cli["seconds"]) - {"write"}  # meshing writes nothing
 
 
-@pytest.mark.parametrize("linear", [False, True])
-def test_arrays(linear, examples):
-    m = curvemesh.mesh(examples / "overlapping-shapes.svg", linear=linear)
-    per_triangle, per_line = (3, 2) if linear else (10, 4)
-    assert m.order == (1 if linear else 3)
+@pytest.mark.parametrize("order", [1, 2, 3])
+def test_arrays(order, examples):
+    m = curvemesh.mesh(examples / "overlapping-shapes.svg", order=order)
+    per_triangle, per_line = {1: (3, 2), 2: (6, 3), 3: (10, 4)}[order]
+    assert m.order == order
     assert m.nodes.dtype == np.float64 and m.nodes.ndim == 2 and m.nodes.shape[1] == 2
     assert m.triangles.dtype == np.int64 and m.triangles.shape[1] == per_triangle
     assert m.lines.dtype == np.int64 and m.lines.shape[1] == per_line
@@ -142,7 +153,7 @@ def test_arrays(linear, examples):
     assert m.nodes is m.nodes
     with pytest.raises(ValueError):
         m.nodes[0, 0] = 1.0
-    assert re.match(r"<curvemesh\.Mesh order=[13]: \d+ nodes, \d+ triangles, \d+ lines>", repr(m))
+    assert re.match(r"<curvemesh\.Mesh order=[123]: \d+ nodes, \d+ triangles, \d+ lines>", repr(m))
 
 
 def test_arrays_match_the_msh_file(examples, tmp_path):
@@ -165,14 +176,15 @@ def test_arrays_match_the_msh_file(examples, tmp_path):
     assert file_lines == ours
 
 
-def test_check(examples, run_cli, tmp_path):
-    m = curvemesh.mesh(examples / "overlapping-shapes.svg")
+@pytest.mark.parametrize("order", [2, 3])
+def test_check(order, examples, run_cli, tmp_path):
+    m = curvemesh.mesh(examples / "overlapping-shapes.svg", order=order)
     m.write(tmp_path / "m.msh")
     cli = json.loads(run_cli("check", tmp_path / "m.msh", "--json").stdout)
     path = tmp_path / "m.msh"
     for report in [curvemesh.check(m), curvemesh.check(path), curvemesh.check(str(path))]:
         assert set(report) == {"order", "triangles", "invalid", "undecided", "min_scaled_jacobian"}
-        assert report["order"] == 3 and report["invalid"] == 0 and report["undecided"] == 0
+        assert report["order"] == order and report["invalid"] == 0 and report["undecided"] == 0
         assert report["triangles"] == len(m.triangles)
         for key in report:
             assert report[key] == cli[key]
@@ -191,13 +203,13 @@ def test_version(run_cli):
 def test_options_and_defaults():
     assert set(curvemesh.OPTIONS) == {
         "mu", "epsilon", "eps_m", "edge_length", "min_edge_length", "min_angle", "junction_angle", "order", "linear",
-        "max_iterations", "stop_amips", "box_margin", "curved_stop_amips", "max_curved_passes", "features",
-        "max_input_mb", "max_elements", "max_curves", "max_triangles", "regions", "domain", "stop_after",
+        "curve_tolerance", "max_iterations", "stop_amips", "box_margin", "curved_stop_amips", "max_curved_passes",
+        "features", "max_input_mb", "max_elements", "max_curves", "max_triangles", "regions", "domain", "stop_after",
     }
     assert curvemesh.OPTIONS["regions"] is False and curvemesh.OPTIONS["domain"] == "box"
     assert curvemesh.OPTIONS["stop_after"] == "curve"
     assert curvemesh.OPTIONS["edge_length"] == 0.05 and curvemesh.OPTIONS["linear"] is False
-    assert curvemesh.OPTIONS["order"] == 3
+    assert curvemesh.OPTIONS["order"] == 3 and curvemesh.OPTIONS["curve_tolerance"] == 0.0
     assert curvemesh.OPTIONS["max_curves"] == 500000 and curvemesh.OPTIONS["max_triangles"] == 2000000
 
 

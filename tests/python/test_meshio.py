@@ -1,6 +1,6 @@
 """Mesh.to_meshio(): the mesh meshio reads from our own .msh file, node order included (its groups
-by kind: the file's further groups are the file's alone); meshio
-writes it (Gmsh 4.1 and 2.2; VTU when linear) and reads back the same geometry."""
+by kind: the file's further groups are the file's alone); meshio writes it (Gmsh 4.1 and 2.2; VTU
+when linear or quadratic) and reads back the same geometry."""
 import numpy as np
 import pytest
 
@@ -34,22 +34,27 @@ def assert_same_geometry(a, b, tags=True):
             assert [c for _, c in ga[cell_type]] == [c for _, c in gb[cell_type]], cell_type
 
 
-@pytest.fixture(scope="module", params=["curved", "linear"])
+ORDERS = {"cubic": 3, "quadratic": 2, "linear": 1}
+# meshio's cell types per order: (lines, triangles).
+CELL_TYPES = {1: ("line", "triangle"), 2: ("line3", "triangle6"), 3: ("line4", "triangle10")}
+
+
+@pytest.fixture(scope="module", params=list(ORDERS))
 def case(request, examples, tmp_path_factory):
-    linear = request.param == "linear"
-    m = curvemesh.mesh(examples / "overlapping-shapes.svg", linear=linear)
+    order = ORDERS[request.param]
+    m = curvemesh.mesh(examples / "overlapping-shapes.svg", order=order)
     folder = tmp_path_factory.mktemp(request.param)
     m.write(folder / "own.msh")
-    return m, folder, linear
+    return m, folder, order
 
 
 def test_to_meshio_is_our_msh_as_meshio_reads_it(case):
-    m, folder, linear = case
+    m, folder, order = case
     mine = m.to_meshio()
     own = meshio.read(folder / "own.msh")
     assert mine.points.shape == (len(m.nodes), 3) and np.all(mine.points[:, 2] == 0)
     assert np.array_equal(mine.points, own.points)
-    line_type, triangle_type = ("line", "triangle") if linear else ("line4", "triangle10")
+    line_type, triangle_type = CELL_TYPES[order]
     # The file has one block per set of groups (a line is also in "border" and its element's group);
     # meshio's gmsh:physical is each cell's first group, its kind: cell for cell, node for node, the
     # same as to_meshio's.
@@ -85,8 +90,8 @@ def test_meshio_writes_it_as_gmsh(case, file_format):
 
 
 def test_meshio_writes_it_as_vtu(case):
-    m, folder, linear = case
-    if not linear:
+    m, folder, order = case
+    if order == 3:
         with pytest.raises(Exception):  # meshio has no VTK type for "triangle10"
             meshio.write(folder / "meshio.vtu", m.to_meshio())
         return
@@ -96,14 +101,16 @@ def test_meshio_writes_it_as_vtu(case):
 
 
 def test_our_vtu_has_the_same_triangles(case):
-    """Our own .vtu (VTK Lagrange triangles, whose node order for 10 nodes is Gmsh's) holds the
+    """Our own .vtu (VTK quadratic or Lagrange triangles, whose node order is Gmsh's) holds the
     triangles of to_meshio() node for node."""
-    m, folder, linear = case
+    m, folder, order = case
     m.write(folder / "own.vtu")
     vtu = meshio.read(folder / "own.vtu")
     mine = m.to_meshio()
-    triangle_type = "triangle" if linear else "triangle10"
-    vtu_triangles = [b for b in vtu.cells if b.data.shape[1] == (3 if linear else 10)]
+    triangle_type = CELL_TYPES[order][1]
+    if order == 2:
+        assert [b.type for b in vtu.cells] == ["triangle6"]  # VTK_QUADRATIC_TRIANGLE
+    vtu_triangles = [b for b in vtu.cells if b.data.shape[1] == m.triangles.shape[1]]
     assert vtu_triangles
     a = sorted(tuple(c.ravel()) for c in mine.points[mine.cells_dict[triangle_type]])
     b = sorted(tuple(c.ravel()) for block in vtu_triangles for c in vtu.points[block.data])
@@ -112,14 +119,18 @@ def test_our_vtu_has_the_same_triangles(case):
 
 def test_curved_nodes_sit_where_gmsh_order_says(case):
     """In Gmsh's (and meshio's) triangle10, nodes 3-8 are two per edge 0-1, 1-2, 2-0 and node 9
-    is inside: checked on the straight triangles, where they sit at thirds."""
-    m, _, linear = case
-    if linear:
+    is inside; in triangle6, nodes 3-5 are the middles of edges 0-1, 1-2, 2-0: checked on the
+    straight triangles, where they sit at thirds (at the middles)."""
+    m, _, order = case
+    if order == 1:
         return
     t = m.nodes[m.triangles]
     c0, c1, c2 = t[:, 0], t[:, 1], t[:, 2]
-    expect = np.stack([(2 * c0 + c1) / 3, (c0 + 2 * c1) / 3, (2 * c1 + c2) / 3, (c1 + 2 * c2) / 3,
-                       (2 * c2 + c0) / 3, (c2 + 2 * c0) / 3, (c0 + c1 + c2) / 3], axis=1)
+    if order == 2:
+        expect = np.stack([(c0 + c1) / 2, (c1 + c2) / 2, (c2 + c0) / 2], axis=1)
+    else:
+        expect = np.stack([(2 * c0 + c1) / 3, (c0 + 2 * c1) / 3, (2 * c1 + c2) / 3, (c1 + 2 * c2) / 3,
+                           (2 * c2 + c0) / 3, (c2 + 2 * c0) / 3, (c0 + c1 + c2) / 3], axis=1)
     size = np.linalg.norm(c1 - c0, axis=1)[:, None]
     straight = np.all(np.linalg.norm(t[:, 3:] - expect, axis=2) < 1e-6 * size, axis=1)
     assert straight.sum() > len(t) / 2  # most triangles are straight; on them the order holds

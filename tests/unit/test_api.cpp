@@ -83,7 +83,7 @@ double distance_to(const Curve& c, const std::array<double, 2>& q) {
 }
 
 void expect_well_formed(const Mesh& m, int order) {
-  const int per_triangle = order == 3 ? 10 : 3, per_line = order == 3 ? 4 : 2;
+  const int per_triangle = (order + 1) * (order + 2) / 2, per_line = order + 1;
   EXPECT_EQ(m.order(), order);
   EXPECT_EQ(m.nodes_per_triangle(), per_triangle);
   EXPECT_EQ(m.nodes_per_line(), per_line);
@@ -138,6 +138,22 @@ TEST(Api, LinearMeshArrays) {
   const Mesh m = mesh_file(kShapes, p);
   expect_well_formed(m, 1);
   EXPECT_EQ(m.stats_json().find("\"curve\""), std::string::npos);
+  EXPECT_NE(m.stats_json().find("\"max_edge_distance\""), std::string::npos);
+}
+
+TEST(Api, QuadraticMeshArrays) {
+  Parameters p;
+  p.order = 2;
+  const Mesh m = mesh_file(kShapes, p);
+  expect_well_formed(m, 2);
+  const std::set<LineTag> tags(m.line_tags().begin(), m.line_tags().end());
+  EXPECT_TRUE(tags.count(LineTag::primary));
+  EXPECT_NE(m.stats_json().find("\"tolerance_splits\""), std::string::npos);
+  p.order = 4;
+  EXPECT_EQ(error_of([&] { mesh_file(kShapes, p); }).first, Error::Kind::invalid_parameters);
+  p.order = 2;
+  p.curve_tolerance_rel = -1;
+  EXPECT_EQ(error_of([&] { mesh_file(kShapes, p); }).first, Error::Kind::invalid_parameters);
 }
 
 // -l means what it says: away from features the edges are about l long. Two short segments at
@@ -308,12 +324,12 @@ TEST(Api, CurvesThatAreNotFiniteAreRefused) {
 
 TEST(Api, CheckCertifiesTheMeshAndItsFile) {
   const ScratchDir dir;
-  for (const bool linear : {false, true}) {
+  for (const int order : {3, 2, 1}) {
     Parameters p;
-    p.order = linear ? 1 : 3;
+    p.order = order;
     const Mesh m = mesh_file(kExamples + "/square-with-hole.svg", p);
     const CheckReport r = check(m);
-    EXPECT_EQ(r.order, linear ? 1 : 3);
+    EXPECT_EQ(r.order, order);
     EXPECT_EQ(r.triangles, m.triangle_count());
     EXPECT_EQ(r.invalid, 0u);
     EXPECT_EQ(r.undecided, 0u);
@@ -360,6 +376,26 @@ TEST(Api, CheckFileFindsAnInvertedElement) {
   const CheckReport straight = check_file(dir / "straight.msh");
   EXPECT_EQ(straight.invalid, 0u);
   EXPECT_GT(straight.min_scaled_jacobian, 0.99);
+
+  // Quadratic triangles, decided on their own degree-2 determinant: straight, folded (edge 0-1's
+  // middle beyond the opposite corner), and positive although a Bernstein coefficient is negative
+  // (tests/unit/test_p2_triangle.cpp's element, which only subdivision decides).
+  const auto write_p2 = [&](const std::string& name, const std::array<std::array<double, 2>, 6>& nodes) {
+    std::ofstream f(dir / name);
+    f << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n6\n";
+    for (int i = 0; i < 6; ++i) f << i + 1 << " " << nodes[i][0] << " " << nodes[i][1] << " 0\n";
+    f << "$EndNodes\n$Elements\n1\n1 9 2 4 1 1 2 3 4 5 6\n$EndElements\n";
+  };
+  write_p2("p2-straight.msh", {{{0, 0}, {1, 0}, {0, 1}, {0.5, 0}, {0.5, 0.5}, {0, 0.5}}});
+  write_p2("p2-folded.msh", {{{0, 0}, {1, 0}, {0, 1}, {0.5, 1.5}, {0.5, 0.5}, {0, 0.5}}});
+  write_p2("p2-subtle.msh", {{{0, 0}, {40, 0}, {0, 40}, {18, 9}, {15, 22}, {-7, 10}}});
+  for (const auto& [name, invalid] : {std::pair{"p2-straight.msh", 0u}, {"p2-folded.msh", 1u}, {"p2-subtle.msh", 0u}}) {
+    const CheckReport r = check_file(dir / name);
+    EXPECT_EQ(r.order, 2) << name;
+    EXPECT_EQ(r.invalid, invalid) << name;
+    EXPECT_EQ(r.undecided, 0u) << name;
+    EXPECT_EQ(r.min_scaled_jacobian > 0, invalid == 0) << name;
+  }
 
   {
     std::ofstream f(dir / "broken.msh");

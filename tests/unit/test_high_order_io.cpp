@@ -440,9 +440,9 @@ TEST(HighOrderMsh, IndependentCheckerAcceptsWhatWeWrite) {
 }
 
 TEST(Vtu, MeshioReadsLagrangeTrianglesInVtkOrder) {
-  // VTK's reference coordinates of the nodes of Lagrange triangles (vtkHigherOrderTriangle::
-  // SetParametricCoords), independently of our Gmsh order: on an affine (unbent) mesh, node k of
-  // every cell must sit at the affine image of reference node k.
+  // VTK's reference coordinates of the nodes of quadratic (vtkQuadraticTriangle) and Lagrange
+  // triangles (vtkHigherOrderTriangle::SetParametricCoords), independently of our Gmsh order: on
+  // an affine (unbent) mesh, node k of every cell must sit at the affine image of reference node k.
   const std::string script = R"(
 import sys, meshio, numpy as np
 path, order = sys.argv[1], int(sys.argv[2])
@@ -454,7 +454,7 @@ ref = {1: [(0, 0), (1, 0), (0, 1)],
 m = meshio.read(path)
 assert len(m.cells) == 1, m.cells
 block = m.cells[0]
-assert block.type == ('triangle' if order == 1 else 'VTK_LAGRANGE_TRIANGLE'), block.type
+assert block.type == {1: 'triangle', 2: 'triangle6', 3: 'VTK_LAGRANGE_TRIANGLE'}[order], block.type
 assert block.data.shape == (4, len(ref)), block.data.shape
 for cell in block.data:
     p = m.points[cell][:, :2]

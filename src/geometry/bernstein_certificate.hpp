@@ -1,0 +1,174 @@
+#pragma once
+// Internal to src/geometry (p3_triangle.cpp, p2_triangle.cpp): the sign of a triangular Bernstein
+// polynomial of any degree on the whole reference triangle (App. C), exactly on rationals and
+// conservatively in doubles. The Jacobian determinant of a Pn element is such a polynomial of
+// degree 2(n − 1): 4 for P3, 2 for P2.
+#include <gmpxx.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "geometry/p3_triangle.hpp"
+
+namespace curvemesh::geometry::detail {
+
+// ---------------------------------------------------------------------------------------------
+// A double with a rigorous bound on its distance to the exact result of the same computation
+// (running error analysis). kEps is twice the unit roundoff u, so |fl(x ∘ y) − x ∘ y| ≤ u |x ∘ y|
+// ≤ kEps |fl(x ∘ y)|. The bounds are themselves rounded; the comparisons below use twice the
+// bound, which covers that (its relative error is a few u, far below a factor 2). Assumes no
+// overflow or underflow: node coordinates between about 1e-70 and 1e70 in magnitude.
+inline constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+struct ErrorBounded {
+  double value = 0, error = 0;
+  ErrorBounded() = default;
+  explicit ErrorBounded(int k) : value(k) {}  // small integers are exact
+  ErrorBounded(double v, double e) : value(v), error(e) {}
+  ErrorBounded& operator+=(const ErrorBounded& o);
+};
+
+inline ErrorBounded rounded(double v, double carried) {
+  return {v, carried + kEps * std::abs(v)};
+}
+inline ErrorBounded operator+(const ErrorBounded& a, const ErrorBounded& b) {
+  return rounded(a.value + b.value, a.error + b.error);
+}
+inline ErrorBounded operator-(const ErrorBounded& a, const ErrorBounded& b) {
+  return rounded(a.value - b.value, a.error + b.error);
+}
+inline ErrorBounded operator*(const ErrorBounded& a, const ErrorBounded& b) {
+  return rounded(a.value * b.value,
+                 std::abs(a.value) * b.error + std::abs(b.value) * a.error + a.error * b.error);
+}
+// |a/b − â/b̂| ≤ (e_a + |â/b̂| e_b) / (|b̂| − e_b) when |b̂| > e_b.
+inline ErrorBounded operator/(const ErrorBounded& a, const ErrorBounded& b) {
+  const double q = a.value / b.value, margin = std::abs(b.value) - b.error;
+  if (!(margin > 0)) return {q, std::numeric_limits<double>::infinity()};
+  return rounded(q, (a.error + std::abs(q) * b.error) / margin);
+}
+inline ErrorBounded& ErrorBounded::operator+=(const ErrorBounded& o) {
+  return *this = *this + o;
+}
+
+// Sign decisions: exact on rationals, outside the error bound on ErrorBounded.
+inline bool certainly_positive(const mpq_class& x) {
+  return sgn(x) > 0;
+}
+inline bool certainly_nonpositive(const mpq_class& x) {
+  return sgn(x) <= 0;
+}
+inline double approx(const mpq_class& x) {
+  return x.get_d();
+}
+inline bool certainly_positive(const ErrorBounded& x) {
+  return x.value > 2 * x.error;
+}
+inline bool certainly_nonpositive(const ErrorBounded& x) {
+  return x.value + 2 * x.error <= 0;
+}
+inline double approx(const ErrorBounded& x) {
+  return x.value;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Subdivision of a degree-D polynomial over the reference triangle.
+
+// The D + 1 choose 2 coefficients of a degree-D polynomial, in bernstein_index order.
+template <int D, class T>
+using Coefficients = std::array<T, bernstein_count(D)>;
+
+using Corner2 = std::array<int, 3>;  // a point of the parent in barycentrics, times 2
+
+// The four sub-triangles cut by the edge midpoints, as points of the parent (barycentrics × 2).
+inline constexpr std::array<std::array<Corner2, 3>, 4> kChildren{{
+    {{{2, 0, 0}, {1, 1, 0}, {1, 0, 1}}},  // at corner 0
+    {{{1, 1, 0}, {0, 2, 0}, {0, 1, 1}}},  // at corner 1
+    {{{1, 0, 1}, {0, 1, 1}, {0, 0, 2}}},  // at corner 2
+    {{{0, 1, 1}, {1, 0, 1}, {1, 1, 0}}},  // the middle one
+}};
+
+// The coefficients at the corners, which are the polynomial's values there.
+template <int D>
+constexpr std::array<std::size_t, 3> kCornerIndex{bernstein_index(D, 0, 0), bernstein_index(D, D, 0),
+                                                  bernstein_index(D, 0, D)};
+
+// Coefficients of the same polynomial over the sub-triangle q0 q1 q2: the coefficient (i, j, k)
+// is the blossom (polar form) at i copies of q0, j of q1 and k of q2, which de Casteljau's
+// algorithm evaluates by using one of those points at each of its D steps.
+template <int D, class T>
+Coefficients<D, T> restrict_to(const Coefficients<D, T>& c, const std::array<Corner2, 3>& q) {
+  Coefficients<D, T> out;
+  for (int k = 0; k <= D; ++k)
+    for (int j = 0; j + k <= D; ++j) {
+      Coefficients<D, T> net = c;
+      for (int m = D; m > 0; --m) {
+        // Steps use q0 (i times), then q1 (j times), then q2 (k times).
+        const int step = D - m;
+        const auto& w = step < D - j - k ? q[0] : step < D - k ? q[1] : q[2];
+        for (int kk = 0; kk < m; ++kk)
+          for (int jj = 0; jj + kk < m; ++jj) {
+            T acc(0);
+            if (w[0]) acc += T(w[0]) * net[bernstein_index(m, jj, kk)];
+            if (w[1]) acc += T(w[1]) * net[bernstein_index(m, jj + 1, kk)];
+            if (w[2]) acc += T(w[2]) * net[bernstein_index(m, jj, kk + 1)];
+            net[bernstein_index(m - 1, jj, kk)] = T(acc / T(2));
+          }
+      }
+      out[bernstein_index(D, j, k)] = net[0];
+    }
+  return out;
+}
+
+struct Search {
+  JacobianVerdict verdict = JacobianVerdict::undecided;
+  int subtriangles = 0;
+  double min_corner = std::numeric_limits<double>::infinity();  // smallest value at a corner seen
+};
+
+// Depth-first search for a sub-triangle with a non-positive corner, skipping those whose
+// coefficients are all positive (the polynomial is at least its smallest coefficient there, by
+// the convex hull property).
+template <int D, class T>
+Search certify(const Coefficients<D, T>& top, const JacobianCheckOptions& options) {
+  Search s;
+  auto corners_fail = [&s](const Coefficients<D, T>& c) {
+    bool fail = false;
+    for (std::size_t i : kCornerIndex<D>) {
+      s.min_corner = std::min(s.min_corner, approx(c[i]));
+      fail = fail || certainly_nonpositive(c[i]);
+    }
+    return fail;
+  };
+  s.verdict = JacobianVerdict::not_positive;  // until the search says otherwise
+  if (corners_fail(top)) return s;
+  std::vector<std::pair<Coefficients<D, T>, int>> stack{{top, 0}};
+  bool gave_up = false;
+  while (!stack.empty()) {
+    auto [c, depth] = std::move(stack.back());
+    stack.pop_back();
+    ++s.subtriangles;
+    if (std::all_of(c.begin(), c.end(), [](const T& x) { return certainly_positive(x); })) continue;
+    if (depth >= options.max_depth) {
+      gave_up = true;  // keep looking: a non-positive corner elsewhere still decides
+      continue;
+    }
+    if (s.subtriangles >= options.max_subtriangles) {
+      s.verdict = JacobianVerdict::undecided;
+      return s;
+    }
+    for (const auto& child : kChildren) {
+      auto cc = restrict_to<D>(c, child);
+      if (corners_fail(cc)) return s;
+      stack.emplace_back(std::move(cc), depth + 1);
+    }
+  }
+  s.verdict = gave_up ? JacobianVerdict::undecided : JacobianVerdict::positive;
+  return s;
+}
+
+}  // namespace curvemesh::geometry::detail
