@@ -80,19 +80,24 @@ TEST(Reader, BasicShapes) {
       "<polyline points='0,0 1,1 2,0'/>"
       "<polygon points='0 0 1 1 2 0'/>"
       "<rect width='0' height='5'/><circle r='0'/>"));  // zero sizes draw nothing
-  // rect 4 + rounded rect (4 sides + 4 corners) 8 + circle 4 + ellipse 4 + line 1 + polyline 2 + polygon 3
-  EXPECT_EQ(s.curves.size(), 4u + 8u + 4u + 4u + 1u + 2u + 3u);
+  // rect 4 + rounded rect (4 sides + 4 corners of 9 pieces) 40 + circle 36 + ellipse 36 + line 1
+  // + polyline 2 + polygon 3
+  EXPECT_EQ(s.curves.size(), 4u + 40u + 36u + 36u + 1u + 2u + 3u);
   ASSERT_GE(s.sources.size(), 1u);
   EXPECT_EQ(s.sources[s.curves[0].source].id, "r");
   EXPECT_EQ(s.sources[s.curves[0].source].tag, "rect");
-  // The circle passes through its four extreme points, starting at (cx + r, cy).
-  const auto& c = s.curves[12].bezier;
-  expect_point(c.p[0], {7, 5});
-  expect_point(c.p[3], {5, 7});
-  // Every point of the circle's cubics lies within 2.8e-4·r of the circle.
-  for (int k = 12; k < 16; ++k)
-    for (double t = 0; t <= 1; t += 0.01)
-      EXPECT_NEAR((s.curves[k].bezier.eval(t) - Vec2(5, 5)).norm(), 2.0, 2.8e-4 * 2.0);
+  // The circle passes through its four extreme points, starting at (cx + r, cy), and closes.
+  const int circle = 44;
+  EXPECT_EQ(s.sources[s.curves[circle].source].tag, "circle");
+  EXPECT_EQ(s.curves[circle].bezier.p[0], Vec2(7, 5));
+  EXPECT_EQ(s.curves[circle + 9].bezier.p[0], Vec2(5, 7));
+  EXPECT_EQ(s.curves[circle + 18].bezier.p[0], Vec2(3, 5));
+  EXPECT_EQ(s.curves[circle + 27].bezier.p[0], Vec2(5, 3));
+  EXPECT_EQ(s.curves[circle + 35].bezier.p[3], Vec2(7, 5));
+  // Every point of the circle's cubics lies within 1e-9·r of the circle (test_arc proves it).
+  for (int k = circle; k < circle + 36; ++k)
+    for (int i = 0; i <= 100; ++i)
+      EXPECT_NEAR((s.curves[k].bezier.eval(i / 100.0) - Vec2(5, 5)).norm(), 2.0, 1e-9 * 2.0);
 }
 
 TEST(Reader, RoundedRectRadiiDefaultAndClamp) {
