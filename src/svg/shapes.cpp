@@ -55,7 +55,8 @@ std::vector<Subpath> rect_subpaths(double x, double y, double w, double h, doubl
       current = sides[i][1];
     }
     const Vec2 next = sides[(i + 1) % 4][0];
-    for (const CubicBezier& c : quarter(centres[i], rx, ry, (i + 3) % 4, current, next)) sp.segments.push_back(c);
+    // Without a side between them, two corners are one arc of the ellipse of radii rx, ry.
+    sp.add_arc(quarter(centres[i], rx, ry, (i + 3) % 4, current, next), !has_side[i]);
     current = next;
   }
   return {sp};
@@ -68,8 +69,7 @@ std::vector<Subpath> ellipse_subpaths(double cx, double cy, double rx, double ry
   const Vec2 c(cx, cy);
   // SVG 2 §10.4: from (cx + rx, cy) through the other three extreme points, each exactly.
   const Vec2 extremes[4] = {{cx + rx, cy}, {cx, cy + ry}, {cx - rx, cy}, {cx, cy - ry}};
-  for (int q = 0; q < 4; ++q)
-    for (const CubicBezier& b : quarter(c, rx, ry, q, extremes[q], extremes[(q + 1) % 4])) sp.segments.push_back(b);
+  for (int q = 0; q < 4; ++q) sp.add_arc(quarter(c, rx, ry, q, extremes[q], extremes[(q + 1) % 4]), q > 0);
   sp.start = extremes[0];
   return {sp};
 }

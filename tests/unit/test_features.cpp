@@ -343,3 +343,17 @@ TEST(Features, PiecesShorterThanTheMinimalEdgeLengthAreSecondary) {
     }
   }
 }
+
+TEST(Features, TheCubicsOfOneArcAreOneCurve) {
+  // A circle is 36 cubics (9 a quarter, to stay within 1e-9 of it). Where they are shorter than μ
+  // (d = 100√2, μ ≈ 0.14: a 10° piece of radius 0.5 is 0.087 long), the pieces of two of them
+  // one apart come within μ of each other; they are one curve, whose pieces within π/2·μ of one
+  // another along it may come that close — around its start too — and every piece stays primary.
+  for (const double r : {5.0, 1.0, 0.5, 0.3, 0.2}) {
+    const auto f = process(read_text(drawing("<rect width='100' height='100'/><circle cx='50' cy='50' r='" +
+                                             std::to_string(r) + "'/>")));
+    EXPECT_EQ(count(f, Kind::secondary), 0) << r;
+    EXPECT_TRUE(f.segments.empty()) << r;
+    EXPECT_EQ(count(f, Kind::primary), 4 + 36) << r;
+  }
+}

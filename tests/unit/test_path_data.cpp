@@ -189,6 +189,12 @@ TEST(PathData, ArcsWithPackedFlags) {
     for (int i = 0; i < 4; ++i) EXPECT_EQ(s[k].p[i], t[k].p[i]);
   // sweep=1 (clockwise on screen) from (0,0) to (1,1) with r=1: the centre is (0,1).
   for (const CubicBezier& c : s) EXPECT_NEAR((c.eval(0.5) - Vec2(0, 1)).norm(), 1.0, kArcTolerance);
+  // The pieces after the first continue it, as one arc.
+  const std::vector<Subpath> sub = parse_path_data("M0 0 L 0 -1 M0 0 a1 1 0 011 1 l 1 0");
+  ASSERT_EQ(sub.size(), 2u);
+  ASSERT_EQ(sub[1].segments.size(), 10u);
+  for (std::size_t k = 0; k < 10; ++k) EXPECT_EQ(sub[1].continues_at(k), k >= 1 && k < 9) << k;
+  EXPECT_FALSE(sub[0].continues_at(0));
 }
 
 TEST(PathData, Errors) {

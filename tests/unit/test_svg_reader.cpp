@@ -250,6 +250,33 @@ TEST(Reader, DegeneratePathsBecomePoints) {
   EXPECT_EQ(s.sources[s.points[0].source].tag, "path");
 }
 
+TEST(Reader, PiecesOfOneArcShareItsNumber) {
+  const FeatureSoup s = read(doc(
+      "<defs><circle id='c' r='2'/></defs>"
+      "<rect width='10' height='4' rx='1'/>"               // four corners, four sides
+      "<use href='#c'/><use href='#c' x='10'/>"            // one circle each
+      "<path d='M 0 0 L 1 0 A 1 1 0 0 1 3 0 A 1 1 0 0 1 1 0 Q 0 3 0 0'/>"));  // two half circles
+  ASSERT_EQ(s.curves.size(), 40u + 72u + 1u + 17u + 17u + 1u);
+  std::vector<int> arcs;
+  for (const SoupCurve& c : s.curves) arcs.push_back(c.arc);
+  std::vector<int> want;
+  for (int corner = 0; corner < 4; ++corner) {
+    want.push_back(-1);                        // the side before it
+    want.insert(want.end(), 9, corner);        // its quarter
+  }
+  want.insert(want.end(), 36, 4);              // the first circle
+  want.insert(want.end(), 36, 5);              // the second
+  want.push_back(-1);                          // the line
+  want.insert(want.end(), 17, 6);              // each arc command: arc_piece_count(π) = 17 pieces
+  want.insert(want.end(), 17, 7);
+  want.push_back(-1);                          // the quadratic
+  EXPECT_EQ(arcs, want);
+  // A rounded rect without sides is one ellipse.
+  const FeatureSoup pill = read(doc("<rect width='10' height='4' rx='5' ry='2'/>"));
+  ASSERT_EQ(pill.curves.size(), 36u);
+  for (const SoupCurve& c : pill.curves) EXPECT_EQ(c.arc, 0);
+}
+
 TEST(Reader, IllustratorEntities) {
   const std::string text =
       "<?xml version='1.0'?>\n"
