@@ -100,8 +100,34 @@ struct PendingSubpath {
   int source;
   Paint stroke, fill, left, right;
   bool filled = false;  // drawn with a fill (its FillLayer is made already)
+  bool closed = false;  // ended by Z
   std::vector<char> continues;  // Subpath::continues
 };
+
+// A closed subpath whose last curve came back to its start only to within `tolerance` (relative
+// path data that does not sum back exactly, an editor's rounding): Z then added a straight line of
+// that length back to the start, or the data has one. Such a line is degenerate — the features
+// stage makes it an isolated point — and leaves the last curve ending beside the first instead of
+// at it, so that the two look like curves crossing within μ and one of them loses its primary
+// piece there to a straight secondary one. The degenerate closing pieces are dropped instead, and
+// the last curve is moved onto the start (its end and last control point together, by at most
+// `tolerance`, keeping its end tangent): the outline closes exactly, one smooth curve.
+void close_exactly(PendingSubpath& sp, double tolerance) {
+  if (!sp.closed) return;
+  auto at_start = [&](const CubicBezier& c) {
+    for (const Vec2& q : c.p)
+      if ((q - sp.start).norm() > tolerance) return false;
+    return true;
+  };
+  std::size_t kept = sp.segments.size();
+  while (kept > 1 && at_start(sp.segments[kept - 1])) --kept;
+  if (kept == sp.segments.size()) return;
+  sp.segments.resize(kept);
+  if (sp.continues.size() > kept) sp.continues.resize(kept);
+  CubicBezier& last = sp.segments.back();
+  last.p[2] += sp.start - last.p[3];
+  last.p[3] = sp.start;
+}
 
 class Reader {
  public:
@@ -741,6 +767,7 @@ void Reader::emit(pugi::xml_node node, std::string_view tag, const std::vector<S
   for (const Subpath& sp : subpaths) {
     PendingSubpath out;
     out.start = ctx.ctm.apply(sp.start);
+    out.closed = sp.closed;
     out.continues = sp.continues;
     out.source = source;
     out.stroke = ctx.stroke;
@@ -845,6 +872,7 @@ void Reader::add_to_soup(PendingSubpath& sp, double tolerance) {
     soup_.points.push_back({centre, sp.source});
     return;
   }
+  close_exactly(sp, tolerance);
   // The pieces of one arc share its number (SoupCurve::arc); a curve not cut from an arc has none.
   int arc = -1;
   for (std::size_t i = 0; i < sp.segments.size(); ++i) {

@@ -250,6 +250,35 @@ TEST(Reader, DegeneratePathsBecomePoints) {
   EXPECT_EQ(s.sources[s.points[0].source].tag, "path");
 }
 
+TEST(Reader, ClosedPathsComingBackToTheirStartWithinRoundOffCloseExactly) {
+  // Relative path data that does not sum back to its start (50.1 + … = 50.10000000000001): Z
+  // would add a closing line of length 7e-15 — a degenerate curve, the last cubic ending beside
+  // the first. The last cubic ends exactly at the start instead, its end tangent kept.
+  const std::string d =
+      "M 50.1 0.3 c 0.9017403 10.4244198 -6.222571 24.7737399 -16.120289 31.2732593 "
+      "c -9.897718 6.4995194 -28.6473604 10.0435088 -43.266019 7.7238572 "
+      "c -14.6186586 -2.3196516 -39.9662093 -12.2496892 -44.4459324 -21.6417669 "
+      "c -4.4797231 -9.3920777 10.7398515 -25.3186215 17.567594 -34.7106992 "
+      "c 6.8277425 -9.3920777 12.6098751 -19.3221153 23.398861 -21.6417669 "
+      "c 10.7889859 -2.3196516 30.8574237 1.2243378 41.3350546 7.7238572 "
+      "c 10.4776309 6.4995194 20.6289905 20.8488395 21.5307308 31.2732593 ";
+  const FeatureSoup closed = read(doc("<path d='" + d + "z'/>"));
+  ASSERT_EQ(closed.curves.size(), 7u);
+  EXPECT_TRUE(closed.points.empty());
+  EXPECT_EQ(closed.curves.back().bezier.p[3], Vec2(50.1, 0.3));
+  const FeatureSoup open = read(doc("<path d='" + d + "'/>"));
+  ASSERT_EQ(open.curves.size(), 7u);
+  const auto& moved = closed.curves.back().bezier;
+  const auto& as_drawn = open.curves.back().bezier;
+  EXPECT_NE(as_drawn.p[3], Vec2(50.1, 0.3));  // without Z nothing is closed
+  EXPECT_EQ(moved.p[3] - moved.p[2], as_drawn.p[3] - as_drawn.p[2]);
+  EXPECT_EQ(moved.p[1], as_drawn.p[1]);
+  // A gap of more than ε_m is the drawing's: Z closes it with a line, as before.
+  const FeatureSoup gap = read(doc("<path d='M 0 0 C 10 0 10 10 0 10 C -10 10 -10 0 0 0.001 Z'/>"));
+  ASSERT_EQ(gap.curves.size(), 3u);
+  EXPECT_EQ(gap.curves[1].bezier.p[3], Vec2(0, 0.001));
+}
+
 TEST(Reader, PiecesOfOneArcShareItsNumber) {
   const FeatureSoup s = read(doc(
       "<defs><circle id='c' r='2'/></defs>"
