@@ -224,7 +224,9 @@ class Mesh:
         self._mesh.write(_path(path), version)
 
     def to_meshio(self):
-        """The mesh as a meshio.Mesh: the mesh meshio reads from the .msh file write() makes.
+        """The mesh as a meshio.Mesh: the mesh meshio reads from the .msh file write() makes, with its
+        lines' groups by kind (the file also puts each line in "border" and in its drawn element's
+        group: read the file, e.g. with meshio.read, for those).
 
         Points are (N, 3) with z = 0 (what meshio's readers give and its writers take). Cells come
         as in the file: one block of "line4" per line tag present (primary, secondary, boundary;

@@ -37,7 +37,7 @@ namespace fs = std::filesystem;
 // then forwarded as the user wrote them (the child parses them again, the one source of truth).
 struct MeshForwarding {
   pipeline::Parameters parameters;
-  int msh_version = 41;
+  io::MshOptions msh;
   std::vector<const CLI::Option*> options;  // forwarded when given on the command line
 };
 
@@ -174,7 +174,7 @@ Runner add_batch_command(CLI::App& app) {
                   "K/N: mesh only the drawings whose index i in the sorted list has i % N == K-1 (K from 1), "
                   "to split a corpus over N runs whose reports add up to the whole")
       ->capture_default_str();
-  args->mesh.options = add_mesh_options(*cmd, args->mesh.parameters, args->mesh.msh_version);
+  args->mesh.options = add_mesh_options(*cmd, args->mesh.parameters, args->mesh.msh);
   cmd->footer(
       "The options from --linear on are passed on to each `curvemesh mesh` as given; see "
       "`curvemesh mesh --help`.");

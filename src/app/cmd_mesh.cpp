@@ -28,7 +28,7 @@ namespace {
 struct MeshArgs {
   std::string input, output_msh, output_svg, output_vtu, output_xdmf, output_stats;
   bool verbose = false, quiet = false;
-  int msh_version = 41;
+  io::MshOptions msh;
   double memory_limit_gb = 0;
   pipeline::Parameters parameters;
 };
@@ -71,7 +71,7 @@ int write_mesh(const MeshArgs& args, pipeline::Result& r, Written& written) {
     // and write_xdmf write).
     const io::HighOrderMesh mesh = pipeline::high_order_mesh(r);
     written = {{args.output_msh}, mesh.order, mesh.triangle_count(), mesh.line_count(), int(mesh.nodes.size())};
-    out.add(args.output_msh, io::msh_string(mesh, io::MshOptions{args.msh_version}));
+    out.add(args.output_msh, io::msh_string(mesh, args.msh));
     const auto also = [&](const std::string& path, const std::string& text) {
       out.add(path, text);
       written.files.push_back(path);
@@ -148,9 +148,13 @@ Runner add_mesh_command(CLI::App& app) {
       "processing (paper §4), an exact constrained triangulation of the bounding box and every feature, "
       "quality optimization (§4.1), and curving (§4.2): cubic 10-node triangles whose edges follow the "
       "primary curves, each certified to have a positive Jacobian. Writes a Gmsh .msh file with the "
-      "triangles and the feature edges as line elements in physical groups primary, secondary and "
-      "boundary; with --linear, straight 3-node triangles. Prints one line on success (the files written; the triangles, lines and "
-      "nodes in them; worst AMIPS energy, smallest scaled Jacobian, seconds). Lengths are relative to the "
+      "triangles and the feature edges as line elements in physical groups: primary, secondary and boundary "
+      "(ids 1-3, what a line lies on), border (5, the border of the meshed domain) and one per drawn element "
+      "(6 on, named by its id, else TAG#INDEX; a side two shapes share is in both); the triangles in domain "
+      "(4), or with --regions one group per region, numbered after the lines' so that no id is used twice; "
+      "with --linear, straight 3-node triangles. Prints one line on success (the files written; the "
+      "triangles, lines and nodes in them; worst AMIPS energy, smallest scaled Jacobian, seconds). Lengths "
+      "are relative to the "
       "diagonal d of the drawing's bounding box.\n"
       "Every output is written whole or not at all, never over the input: when one of them cannot be "
       "written, none is left. Exit codes: 0 success, 1 invalid input, a limit reached (see the --max-* "
@@ -170,8 +174,9 @@ Runner add_mesh_command(CLI::App& app) {
                   "triangle's physical group) and \"facet_tags\" (each feature line's); orders 1 and 2 only");
   add_run_options(*cmd, args->parameters);
   cmd->add_option("--stats", args->output_stats,
-                  "write statistics as JSON: counts, min angle, max and mean AMIPS, seconds per stage");
-  add_mesh_options(*cmd, args->parameters, args->msh_version);
+                  "write statistics as JSON: counts, min angle, max and mean AMIPS, seconds per stage, and the "
+                  "physical groups (dim, id, name, and lines and length or triangles and area)");
+  add_mesh_options(*cmd, args->parameters, args->msh);
   add_memory_limit_option(*cmd, args->memory_limit_gb);
   cmd->add_flag("-v,--verbose", args->verbose,
                 "report each optimization pass on stderr (triangles, min angle, max AMIPS)");

@@ -91,12 +91,20 @@ void add_feature_options(CLI::App& cmd, pipeline::Parameters& p) {
   add_groups(cmd, p, {"features", "limits"});
 }
 
-std::vector<const CLI::Option*> add_mesh_options(CLI::App& cmd, pipeline::Parameters& p, int& msh_version) {
+std::vector<const CLI::Option*> add_mesh_options(CLI::App& cmd, pipeline::Parameters& p, io::MshOptions& msh) {
   std::vector<const CLI::Option*> added = add_groups(cmd, p, {"mesh"});
-  added.push_back(cmd.add_option("--msh-version", msh_version, "Gmsh file format: 41 (4.1) or 22 (2.2)")
+  added.push_back(cmd.add_option("--msh-version", msh.version,
+                                 "Gmsh file format: 41 (4.1) or 22 (2.2); a line in several physical groups is one "
+                                 "element of an entity with several physical tags in 4.1, one element per group in 2.2")
                       ->capture_default_str()
                       ->transform(CLI::CheckedTransformer(
                           std::map<std::string, int>{{"4.1", 41}, {"41", 41}, {"2.2", 22}, {"22", 22}})));
+  added.push_back(cmd.add_flag(
+      "--msh-boundary-only", msh.boundary_only,
+      "the .msh gets only the lines on the border of the meshed domain, each in one physical group: the drawn "
+      "element it lies on (the first drawn, when several), else boundary (a side of the box). For deal.II, whose "
+      "GridIn::read_msh refuses a line inside the mesh or in two groups; with --order 1, as it reads straight "
+      "triangles only"));
   for (const CLI::Option* o : add_groups(cmd, p, {"features", "limits"})) added.push_back(o);
   return added;
 }

@@ -4,6 +4,7 @@
 // `mesh` and `batch`. Checked again, all together, by pipeline::Parameters::validate.
 #include <vector>
 
+#include "io/msh_writer.hpp"
 #include "pipeline/parameters.hpp"
 
 namespace CLI {
@@ -31,10 +32,10 @@ void add_memory_limit_option(CLI::App& cmd, double& gigabytes);
 void limit_memory(double gigabytes);
 
 // The group "mesh" (--order, --linear, --max-iterations, --stop-amips, --box-margin,
-// --curved-stop-amips, --max-curved-passes), --msh-version and the feature options. Returns the
-// options it registered, in order (what `batch` passes on to its children).
+// --curved-stop-amips, --max-curved-passes), --msh-version, --msh-boundary-only and the feature
+// options. Returns the options it registered, in order (what `batch` passes on to its children).
 std::vector<const CLI::Option*> add_mesh_options(CLI::App& cmd, pipeline::Parameters& parameters,
-                                                 int& msh_version);
+                                                 io::MshOptions& msh);
 
 // Whether the parameters are consistent; if not, says why on stderr.
 bool parameters_valid(const pipeline::Parameters& parameters);

@@ -35,7 +35,13 @@ struct Segment {
   Vec2 a = Vec2::Zero(), b = Vec2::Zero();
   int curve = -1;          // the input curve it approximates
   double t0 = 0, t1 = 1;   // the interval of that curve it stands for
+  // Other input curves whose pieces became this very segment (coincident curves of two shapes),
+  // ascending: the mesh's lines along it lie on them too.
+  std::vector<int> other_curves;
 };
+
+// How far along segment s (0 at a, 1 at b) the point nearest p lies, unclamped.
+double fraction_along(const Segment& s, const Vec2& p);
 
 struct IsolatedPoint {
   Vec2 p = Vec2::Zero();

@@ -154,7 +154,7 @@ Features read_poly(const std::string& path, const Limits& limits) {
     if (vertices[a] == vertices[b]) continue;  // zero length: its vertex stays a point if nothing else uses it
     if (!seen.insert(std::minmax(a, b)).second) continue;
     used[a] = used[b] = 1;
-    f.segments.push_back({vertices[a], vertices[b], -1, 0, 1});
+    f.segments.push_back({vertices[a], vertices[b], -1, 0, 1, {}});
   }
   if (!r.done()) {
     const auto& hh = r.next(1, "the hole count");

@@ -38,6 +38,12 @@ std::vector<Section> runs_of(const detail::Discretized& d, const svg::FeatureSou
 
 }  // namespace
 
+double fraction_along(const Segment& s, const Vec2& p) {
+  const Vec2 ab = s.b - s.a;
+  const double len2 = ab.squaredNorm();
+  return len2 > 0 ? (p - s.a).dot(ab) / len2 : 0.0;
+}
+
 Box2 drawing_box(const svg::FeatureSoup& soup) {
   const Box2 bounds = soup.bounds();
   // Nothing drawn (a file of gradient or pattern definitions): the canvas alone is meshed.

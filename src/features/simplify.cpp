@@ -116,14 +116,23 @@ std::vector<Segment> simplify_secondary(const Discretized& d, const Lengths& len
   }
 
   std::vector<Segment> out;
-  std::map<std::pair<Vec2, Vec2>, int, SegmentLess> seen;
+  std::map<std::pair<Vec2, Vec2>, int, SegmentLess> seen;  // -> index in out
   for (std::size_t s = 0; s < secondary.size(); ++s) {
     Vec2 a = target[secondary[s].first], b = target[secondary[s].second];
     if (a == b) continue;  // collapsed away
     const Vec2 lo = Vec2Less()(a, b) ? a : b, hi = Vec2Less()(a, b) ? b : a;
-    if (!seen.emplace(std::pair{lo, hi}, 0).second) continue;  // the same segment twice
     const Piece& p = d.pieces[piece_of[s]];
-    out.push_back({a, b, d.sections[p.section].curve, p.t0, p.t1});
+    const int curve = d.sections[p.section].curve;
+    const auto [it, inserted] = seen.emplace(std::pair{lo, hi}, static_cast<int>(out.size()));
+    if (!inserted) {
+      // The same segment twice: kept once, standing for both curves.
+      Segment& kept = out[it->second];
+      auto& others = kept.other_curves;
+      if (curve != kept.curve && !std::binary_search(others.begin(), others.end(), curve))
+        others.insert(std::upper_bound(others.begin(), others.end(), curve), curve);
+      continue;
+    }
+    out.push_back({a, b, curve, p.t0, p.t1, {}});
   }
   return out;
 }

@@ -9,7 +9,15 @@ std::map<std::pair<int, int>, std::string> HighOrderMesh::default_physical_names
   return {{{1, kPhysicalPrimary}, "primary"},
           {{1, kPhysicalSecondary}, "secondary"},
           {{1, kPhysicalBoundary}, "boundary"},
+          {{1, kPhysicalBorder}, "border"},
           {{2, kPhysicalDomain}, "domain"}};
+}
+
+std::vector<int> HighOrderMesh::groups_of_line(int l) const {
+  std::vector<int> out;
+  if (line_physical.at(l) > 0) out.push_back(line_physical[l]);
+  if (!line_groups.empty()) out.insert(out.end(), line_groups.at(l).begin(), line_groups[l].end());
+  return out;
 }
 
 void HighOrderMesh::add_triangle(std::span<const int> node_indices, int physical) {
@@ -21,13 +29,18 @@ void HighOrderMesh::add_triangle(std::span<const int> node_indices, int physical
   triangle_physical.push_back(physical);
 }
 
-void HighOrderMesh::add_line(std::span<const int> node_indices, int physical) {
+void HighOrderMesh::add_line(std::span<const int> node_indices, int physical, std::vector<int> groups) {
   if (!order_ok() || static_cast<int>(node_indices.size()) != line_size())
     throw std::logic_error("HighOrderMesh: a line of order " + std::to_string(order) + " needs " +
                            std::to_string(line_size()) + " nodes, got " +
                            std::to_string(node_indices.size()));
   lines.insert(lines.end(), node_indices.begin(), node_indices.end());
   line_physical.push_back(physical);
+  // line_groups stays empty until some line has a further group.
+  if (!groups.empty() || !line_groups.empty()) {
+    line_groups.resize(line_physical.size() - 1);
+    line_groups.push_back(std::move(groups));
+  }
 }
 
 std::optional<std::string> HighOrderMesh::structure_error() const {
@@ -55,6 +68,16 @@ std::optional<std::string> HighOrderMesh::structure_error() const {
   };
   if (auto e = check("triangle", triangles, triangle_size(), triangle_physical)) return e;
   if (auto e = check("line", lines, line_size(), line_physical)) return e;
+  if (!line_groups.empty() && line_groups.size() != line_physical.size())
+    return "lines: " + std::to_string(line_physical.size()) + " lines but " + std::to_string(line_groups.size()) +
+           " lists of further groups";
+  for (std::size_t l = 0; l < line_groups.size(); ++l)
+    for (std::size_t i = 0; i < line_groups[l].size(); ++i) {
+      const int g = line_groups[l][i];
+      if (g <= 0 || g == line_physical[l] || (i > 0 && g <= line_groups[l][i - 1]))
+        return "line " + std::to_string(l) + "'s further groups are not positive, ascending and apart from its " +
+               "physical tag";
+    }
   for (const auto& [key, name] : physical_names)
     if (key.first != 1 && key.first != 2)
       return "physical name \"" + name + "\" has dimension " + std::to_string(key.first);

@@ -15,8 +15,12 @@
 
 namespace curvemesh::io {
 
-// Physical tags: lines by what they lie on, and the triangles.
-inline constexpr int kPhysicalPrimary = 1, kPhysicalSecondary = 2, kPhysicalBoundary = 3, kPhysicalDomain = 4;
+// Physical tags: lines by what they lie on, the triangles, and the lines on the border of the
+// meshed domain. Tags from kFirstDrawingGroup on are the drawing's own (each drawn element's lines,
+// the regions), numbered by the pipeline (regions/groups.hpp).
+inline constexpr int kPhysicalPrimary = 1, kPhysicalSecondary = 2, kPhysicalBoundary = 3, kPhysicalDomain = 4,
+                     kPhysicalBorder = 5;
+inline constexpr int kFirstDrawingGroup = 6;
 
 struct HighOrderMesh {
   // 1, 2 or 3. A triangle has (order+1)(order+2)/2 nodes (Gmsh types 2, 9, 21): the corners,
@@ -28,7 +32,12 @@ struct HighOrderMesh {
   std::vector<int> triangles;          // node indices, triangle_size() per triangle
   std::vector<int> triangle_physical;  // one per triangle; 0 = in no physical group
   std::vector<int> lines;              // node indices, line_size() per line
-  std::vector<int> line_physical;      // one per line; 0 = in no physical group
+  std::vector<int> line_physical;      // one per line: what it lies on; 0 = in no physical group
+  // The further physical groups of each line (the border, the drawn elements it lies on), each
+  // list ascending and without line_physical: empty when no line has any, else one list per line.
+  // A line is in several groups at once: one Gmsh entity with several physical tags in .msh 4.1,
+  // the element written once per group in 2.2.
+  std::vector<std::vector<int>> line_groups;
   // Names of physical groups by (dimension, tag); dimension 1 for lines, 2 for triangles.
   std::map<std::pair<int, int>, std::string> physical_names = default_physical_names();
 
@@ -45,9 +54,12 @@ struct HighOrderMesh {
     return std::span<const int>(lines).subspan(std::size_t(l) * line_size(), line_size());
   }
 
+  // Every physical group of line l: line_physical (when not 0), then line_groups.
+  std::vector<int> groups_of_line(int l) const;
+
   // Appends an element; `node_indices` must have triangle_size() (line_size()) entries.
   void add_triangle(std::span<const int> node_indices, int physical = kPhysicalDomain);
-  void add_line(std::span<const int> node_indices, int physical);
+  void add_line(std::span<const int> node_indices, int physical, std::vector<int> groups = {});
 
   // Why the arrays do not describe a mesh (order not 1..3, array sizes that do not fit the
   // order, node indices out of range, negative physical tags, non-finite coordinates), or

@@ -7,6 +7,7 @@
 #include <iterator>
 #include <map>
 #include <optional>
+#include <span>
 #include <unordered_map>
 #include <vector>
 
@@ -229,14 +230,13 @@ class Reader {
         const long long tag = t.integer("entity tag");
         for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) t.real("entity coordinate");
         const int physicals = t.count("number of physical tags");
-        long long first = 0;
+        std::vector<int>& tags = entity_physical_[{dim, tag}];
+        tags.clear();
         for (int k = 0; k < physicals; ++k) {
           const long long p = t.integer("physical tag");
-          if (k == 0) first = p;
+          if (p < 0 || p > INT_MAX) t.fail("physical tag " + std::to_string(p) + " is out of range");
+          tags.push_back(static_cast<int>(p));
         }
-        if (first < 0 || first > INT_MAX)
-          t.fail("physical tag " + std::to_string(first) + " is out of range");
-        entity_physical_[{dim, tag}] = static_cast<int>(first);
         if (dim > 0) {
           const int bounding = t.count("number of bounding entities");
           for (int k = 0; k < bounding; ++k) t.integer("bounding entity tag");
@@ -286,8 +286,9 @@ class Reader {
     t.expect_end();
   }
 
-  // Reads the node tags of one element of `type` and files it by kind.
-  void element(Tokens& t, long long tag, long long type, int physical) {
+  // Reads the node tags of one element of `type` and files it by kind; a line keeps the further
+  // physical tags of its entity (`more`) as its further groups.
+  void element(Tokens& t, long long tag, long long type, int physical, std::span<const int> more = {}) {
     const std::optional<ElementKind> kind = element_kind(type);
     if (!kind)
       t.fail("element " + std::to_string(tag) + " has type " + std::to_string(type) +
@@ -316,8 +317,18 @@ class Reader {
                " but earlier lines have order " + std::to_string(line_order_) +
                ": mixed orders are not supported");
       line_order_ = kind->order;
+      std::vector<int> groups;
+      for (int g : more)
+        if (g > 0 && g != physical) groups.push_back(g);
+      std::sort(groups.begin(), groups.end());
+      groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
+      // The order is known only at the end: the arrays are filled here, not through add_line.
       mesh_.lines.insert(mesh_.lines.end(), scratch_.begin(), scratch_.end());
       mesh_.line_physical.push_back(physical);
+      if (!groups.empty() || !mesh_.line_groups.empty()) {
+        mesh_.line_groups.resize(mesh_.line_physical.size() - 1);
+        mesh_.line_groups.push_back(std::move(groups));
+      }
     }
   }
 
@@ -333,10 +344,12 @@ class Reader {
       const long long entity = t.integer("entity tag");
       const long long type = t.integer("element type");
       const int n = t.count("number of elements in the block");
-      const auto physical = entity_physical_.find({dim, entity});
+      const auto found = entity_physical_.find({dim, entity});
+      const std::span<const int> tags =
+          found == entity_physical_.end() ? std::span<const int>() : std::span<const int>(found->second);
       for (int i = 0; i < n; ++i, ++read) {
         const long long tag = t.positive("element tag");
-        element(t, tag, type, physical == entity_physical_.end() ? 0 : physical->second);
+        element(t, tag, type, tags.empty() ? 0 : tags[0], tags.empty() ? tags : tags.subspan(1));
       }
     }
     if (read != total)
@@ -375,7 +388,8 @@ class Reader {
 
   std::map<std::string, Section> sections_;
   int version_ = 0;
-  std::map<std::pair<long long, long long>, int> entity_physical_;  // (dim, entity tag) -> physical tag
+  // (dim, entity tag) -> its physical tags
+  std::map<std::pair<long long, long long>, std::vector<int>> entity_physical_;
   std::unordered_map<long long, int> node_index_;                   // node tag -> index; lookups only
   std::vector<int> scratch_;
   int triangle_order_ = 0, line_order_ = 0;

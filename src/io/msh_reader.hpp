@@ -4,7 +4,8 @@
 // (15) are skipped, other $-sections than $MeshFormat, $PhysicalNames, $Entities, $Nodes and
 // $Elements are ignored. Node tags may be any positive integers; nodes keep the order of the
 // file, elements too. An element takes the first physical tag of its entity (4.1) or its first
-// tag (2.2); 0 when it has none.
+// tag (2.2); 0 when it has none. A line also keeps its entity's further physical tags (4.1) as its
+// further groups; a 2.2 line written once per group is read as that many lines.
 #include <cstdint>
 #include <stdexcept>
 #include <string>

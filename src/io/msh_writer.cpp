@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <map>
+#include <optional>
+#include <set>
 #include <stdexcept>
 #include <vector>
 
@@ -42,26 +45,50 @@ class Text {
   std::string out_;
 };
 
-// The elements of one physical group of one dimension: one geometric entity in the file.
+// The elements of one geometric entity of the file: the elements of one dimension that are in the
+// same physical groups.
 struct Group {
   int dim;
-  int physical;  // 0: in no physical group
-  int entity;    // the entity's tag
+  std::vector<int> physicals;  // ascending; empty: in no physical group
+  int entity;                  // the entity's tag
   std::vector<int> elements;
   geometry::Box2 box;
 };
 
-// Groups elements by physical tag, ascending, keeping their order within each group.
-std::vector<Group> group_by_physical(int dim, const std::vector<int>& physical) {
-  std::vector<int> tags = physical;
-  std::sort(tags.begin(), tags.end());
-  tags.erase(std::unique(tags.begin(), tags.end()), tags.end());
+// The triangles by physical tag, ascending, keeping their order within each group.
+std::vector<Group> group_triangles(const std::vector<int>& physical) {
+  std::map<int, std::vector<int>> by_tag;
+  for (int e = 0; e < static_cast<int>(physical.size()); ++e) by_tag[physical[e]].push_back(e);
   std::vector<Group> groups;
-  for (int tag : tags) groups.push_back(Group{dim, tag, 0, {}, {}});
-  for (int e = 0; e < static_cast<int>(physical.size()); ++e) {
-    const auto at = std::lower_bound(tags.begin(), tags.end(), physical[e]) - tags.begin();
-    groups[at].elements.push_back(e);
-  }
+  for (auto& [tag, elements] : by_tag)
+    groups.push_back(Group{2, tag > 0 ? std::vector<int>{tag} : std::vector<int>{}, 0, std::move(elements), {}});
+  return groups;
+}
+
+// The physical groups line l is written in; nothing when it is not written. With `boundary_only`
+// only the lines on the border are written, each in one group (a reader that takes one group per
+// line, as deal.II does, refuses more): its lowest further group above `border` (the drawn element
+// it lies on, the first when several), else its line_physical (a side of the box).
+std::optional<std::vector<int>> line_tags(const HighOrderMesh& m, int l, bool boundary_only) {
+  std::vector<int> tags = m.groups_of_line(l);
+  std::sort(tags.begin(), tags.end());
+  if (!boundary_only) return tags;
+  if (std::find(tags.begin(), tags.end(), kPhysicalBorder) == tags.end()) return std::nullopt;
+  const auto element = std::upper_bound(tags.begin(), tags.end(), kPhysicalBorder);
+  if (element != tags.end()) return std::vector<int>{*element};
+  if (m.line_physical[l] > 0) return std::vector<int>{m.line_physical[l]};
+  return std::vector<int>{};
+}
+
+// The lines by the set of their physical groups, sets in ascending (lexicographic) order, keeping
+// the lines' order within each: one entity per set, so that 4.1 lists a line once however many
+// groups it is in.
+std::vector<Group> group_lines(const HighOrderMesh& m, bool boundary_only) {
+  std::map<std::vector<int>, std::vector<int>> by_tags;
+  for (int l = 0; l < m.line_count(); ++l)
+    if (auto tags = line_tags(m, l, boundary_only)) by_tags[std::move(*tags)].push_back(l);
+  std::vector<Group> groups;
+  for (auto& [tags, elements] : by_tags) groups.push_back(Group{1, tags, 0, std::move(elements), {}});
   return groups;
 }
 
@@ -88,26 +115,27 @@ std::string quotable(const std::string& name) {
   return out;
 }
 
-}  // namespace
+// The file's entities: curves numbered 1.. in the order of their sets of groups, surfaces 1.. in
+// the order of their tags. All nodes sit on surface 1, so its box holds them all; with no
+// triangles it is there to hold them, in no group.
+struct Entities {
+  std::vector<Group> curves, surfaces;
+  std::vector<const Group*> with_elements;  // in file order: lines, then triangles
+  std::size_t elements = 0;                 // elements written (2.2: a line once per group)
+};
 
-std::string msh_string(const HighOrderMesh& m, const MshOptions& options) {
-  if (options.version != 41 && options.version != 22)
-    throw std::logic_error("msh: unsupported version " + std::to_string(options.version));
-  if (auto error = m.structure_error()) throw std::logic_error("msh: " + *error);
-
-  // Curve entities are tagged by their physical group (an unnamed group gets the next free
-  // tag); surface entities are numbered from 1. All nodes sit on surface 1, so its box holds
-  // them all; with no triangles it is there to hold them, in no group.
-  std::vector<Group> curves = group_by_physical(1, m.line_physical);
-  std::vector<Group> surfaces = group_by_physical(2, m.triangle_physical);
-  const int free_curve_tag = curves.empty() ? 1 : std::max(curves.back().physical, 0) + 1;
-  for (Group& g : curves) {
-    g.entity = g.physical > 0 ? g.physical : free_curve_tag;
+Entities entities(const HighOrderMesh& m, const MshOptions& options) {
+  Entities out;
+  out.curves = group_lines(m, options.boundary_only);
+  out.surfaces = group_triangles(m.triangle_physical);
+  for (std::size_t c = 0; c < out.curves.size(); ++c) {
+    Group& g = out.curves[c];
+    g.entity = static_cast<int>(c) + 1;
     for (int e : g.elements) add_nodes(g.box, m, m.line(e));
   }
-  if (surfaces.empty()) surfaces.push_back(Group{2, 0, 0, {}, {}});
-  for (std::size_t s = 0; s < surfaces.size(); ++s) {
-    Group& g = surfaces[s];
+  if (out.surfaces.empty()) out.surfaces.push_back(Group{2, {}, 0, {}, {}});
+  for (std::size_t s = 0; s < out.surfaces.size(); ++s) {
+    Group& g = out.surfaces[s];
     g.entity = static_cast<int>(s) + 1;
     if (s == 0) {
       for (const geometry::Vec2& p : m.nodes) g.box.add(p);
@@ -115,78 +143,111 @@ std::string msh_string(const HighOrderMesh& m, const MshOptions& options) {
       for (int e : g.elements) add_nodes(g.box, m, m.triangle(e));
     }
   }
-  for (Group& g : curves)
-    if (g.box.empty()) g.box.add(geometry::Vec2::Zero());
-  for (Group& g : surfaces)
-    if (g.box.empty()) g.box.add(geometry::Vec2::Zero());
+  for (std::vector<Group>* list : {&out.curves, &out.surfaces})
+    for (Group& g : *list) {
+      if (g.box.empty()) g.box.add(geometry::Vec2::Zero());
+      if (g.elements.empty()) continue;
+      out.with_elements.push_back(&g);
+      const std::size_t copies = options.version == 22 ? std::max<std::size_t>(g.physicals.size(), 1) : 1;
+      out.elements += g.elements.size() * copies;
+    }
+  return out;
+}
 
-  std::vector<const Group*> element_groups;  // in file order: lines, then triangles
-  for (const Group& g : curves) element_groups.push_back(&g);
-  for (const Group& g : surfaces)
-    if (!g.elements.empty()) element_groups.push_back(&g);
-  std::size_t elements = 0;
-  for (const Group* g : element_groups) elements += g->elements.size();
-  const auto type_of = [&m](const Group& g) { return (g.dim == 1 ? kLineType : kTriangleType)[m.order - 1]; };
-  const auto nodes_of = [&m](const Group& g, int e) { return g.dim == 1 ? m.line(e) : m.triangle(e); };
-
-  Text t;
-  t << (options.version == 22 ? "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
-                              : "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
+// $PhysicalNames: every named group some written element is in, by dimension and tag.
+void write_names(Text& t, const HighOrderMesh& m, const Entities& entities) {
+  std::set<std::pair<int, int>> used;
+  for (const Group* g : entities.with_elements)
+    for (int tag : g->physicals) used.insert({g->dim, tag});
   std::vector<std::string> names;
-  for (const Group* g : element_groups) {
-    const auto name = m.physical_names.find({g->dim, g->physical});
-    if (g->physical > 0 && name != m.physical_names.end())
-      names.push_back(std::to_string(g->dim) + " " + std::to_string(g->physical) + " \"" + quotable(name->second) +
+  for (const auto& key : used)
+    if (const auto name = m.physical_names.find(key); name != m.physical_names.end())
+      names.push_back(std::to_string(key.first) + " " + std::to_string(key.second) + " \"" + quotable(name->second) +
                       "\"\n");
-  }
-  if (!names.empty()) {
-    t << "$PhysicalNames\n" << names.size() << "\n";
-    for (const std::string& line : names) t << line;
-    t << "$EndPhysicalNames\n";
-  }
-  const std::size_t n = m.nodes.size();
+  if (names.empty()) return;
+  t << "$PhysicalNames\n" << names.size() << "\n";
+  for (const std::string& line : names) t << line;
+  t << "$EndPhysicalNames\n";
+}
 
-  if (options.version == 22) {
-    t << "$Nodes\n" << n << "\n";
-    for (std::size_t v = 0; v < n; ++v)
-      t << v + 1 << " " << m.nodes[v].x() << " " << m.nodes[v].y() << " 0\n";
-    t << "$EndNodes\n$Elements\n" << elements << "\n";
-    long id = 1;
-    for (const Group* g : element_groups)
+int type_of(const HighOrderMesh& m, const Group& g) {
+  return (g.dim == 1 ? kLineType : kTriangleType)[m.order - 1];
+}
+
+std::span<const int> nodes_of(const HighOrderMesh& m, const Group& g, int e) {
+  return g.dim == 1 ? m.line(e) : m.triangle(e);
+}
+
+// 2.2 has one physical tag per element: an element in several groups is written once per group,
+// each copy with its own element number and its own elementary entity (numbered on in file order),
+// so that a reader that takes groups from elements (GetFEM, meshio) and one that takes them from
+// elementary entities (Gmsh) both find it once in each group.
+void write_body22(Text& t, const HighOrderMesh& m, const Entities& entities) {
+  const std::size_t n = m.nodes.size();
+  t << "$Nodes\n" << n << "\n";
+  for (std::size_t v = 0; v < n; ++v) t << v + 1 << " " << m.nodes[v].x() << " " << m.nodes[v].y() << " 0\n";
+  t << "$EndNodes\n$Elements\n" << entities.elements << "\n";
+  long id = 1;
+  int curve = 0;
+  for (const Group* g : entities.with_elements) {
+    const std::vector<int> physicals = g->physicals.empty() ? std::vector<int>{0} : g->physicals;
+    for (int physical : physicals) {
+      const int entity = g->dim == 1 ? ++curve : g->entity;
       for (int e : g->elements) {
-        t << id++ << " " << type_of(*g) << " 2 " << g->physical << " " << g->entity;
-        for (int v : nodes_of(*g, e)) t << " " << v + 1;
+        t << id++ << " " << type_of(m, *g) << " 2 " << physical << " " << entity;
+        for (int v : nodes_of(m, *g, e)) t << " " << v + 1;
         t << "\n";
       }
-    t << "$EndElements\n";
-    return t.take();
+    }
   }
+  t << "$EndElements\n";
+}
 
-  t << "$Entities\n0 " << curves.size() << " " << surfaces.size() << " 0\n";
-  for (const std::vector<Group>* list : {&curves, &surfaces})
+void write_body41(Text& t, const HighOrderMesh& m, const Entities& entities) {
+  t << "$Entities\n0 " << entities.curves.size() << " " << entities.surfaces.size() << " 0\n";
+  for (const std::vector<Group>* list : {&entities.curves, &entities.surfaces})
     for (const Group& g : *list) {
-      t << g.entity << " " << g.box;
-      if (g.physical > 0)
-        t << " 1 " << g.physical << " 0\n";
-      else
-        t << " 0 0\n";
+      t << g.entity << " " << g.box << " " << g.physicals.size();
+      for (int tag : g.physicals) t << " " << tag;
+      t << " 0\n";
     }
   t << "$EndEntities\n";
+  // Node tags are 1..n without a gap, node i being tag i + 1: readers that index nodes by tag
+  // (dolfinx's gmshio) need it.
+  const std::size_t n = m.nodes.size();
   t << "$Nodes\n1 " << n << " 1 " << n << "\n2 1 0 " << n << "\n";
   for (std::size_t v = 0; v < n; ++v) t << v + 1 << "\n";
   for (std::size_t v = 0; v < n; ++v) t << m.nodes[v].x() << " " << m.nodes[v].y() << " 0\n";
   t << "$EndNodes\n";
-  t << "$Elements\n" << element_groups.size() << " " << elements << " 1 " << elements << "\n";
+  const std::size_t elements = entities.elements;
+  t << "$Elements\n" << entities.with_elements.size() << " " << elements << " 1 " << elements << "\n";
   long id = 1;
-  for (const Group* g : element_groups) {
-    t << g->dim << " " << g->entity << " " << type_of(*g) << " " << g->elements.size() << "\n";
+  for (const Group* g : entities.with_elements) {
+    t << g->dim << " " << g->entity << " " << type_of(m, *g) << " " << g->elements.size() << "\n";
     for (int e : g->elements) {
       t << id++;
-      for (int v : nodes_of(*g, e)) t << " " << v + 1;
+      for (int v : nodes_of(m, *g, e)) t << " " << v + 1;
       t << "\n";
     }
   }
   t << "$EndElements\n";
+}
+
+}  // namespace
+
+std::string msh_string(const HighOrderMesh& m, const MshOptions& options) {
+  if (options.version != 41 && options.version != 22)
+    throw std::logic_error("msh: unsupported version " + std::to_string(options.version));
+  if (auto error = m.structure_error()) throw std::logic_error("msh: " + *error);
+  const Entities e = entities(m, options);
+  Text t;
+  t << (options.version == 22 ? "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
+                              : "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
+  write_names(t, m, e);
+  if (options.version == 22)
+    write_body22(t, m, e);
+  else
+    write_body41(t, m, e);
   return t.take();
 }
 

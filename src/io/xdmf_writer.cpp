@@ -101,6 +101,15 @@ std::string data_item(const std::string& data_name, const std::string& path, std
   return s.str();
 }
 
+// The one tag dolfinx keeps of a line in several groups: the most specific, the first drawn
+// element it lies on (what a boundary condition selects), else what it lies on.
+int facet_tag(const HighOrderMesh& m, int l) {
+  if (!m.line_groups.empty())
+    for (int g : m.line_groups[std::size_t(l)])
+      if (g >= kFirstDrawingGroup) return g;
+  return m.line_physical[std::size_t(l)];
+}
+
 // The lines with their tags, each set of nodes once (its first line's tag).
 std::pair<std::vector<int>, std::vector<int>> distinct_lines(const HighOrderMesh& m) {
   std::vector<int> nodes, tags;
@@ -111,7 +120,7 @@ std::pair<std::vector<int>, std::vector<int>> distinct_lines(const HighOrderMesh
     std::sort(key.begin(), key.end());
     if (!seen.insert(std::move(key)).second) continue;
     nodes.insert(nodes.end(), line.begin(), line.end());
-    tags.push_back(m.line_physical[std::size_t(l)]);
+    tags.push_back(facet_tag(m, l));
   }
   return {std::move(nodes), std::move(tags)};
 }

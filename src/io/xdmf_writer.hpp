@@ -3,7 +3,7 @@
 // HDF5 file beside it (.h5), as dolfinx writes them and as dolfinx.io.XDMFFile reads them by
 // default. Three grids share the nodes: "mesh" (the triangles: read_mesh(name="mesh")),
 // "cell_tags" (each triangle's physical tag: read_meshtags(mesh, "cell_tags")) and "facet_tags"
-// (each feature line's: read_meshtags(mesh, "facet_tags") once the mesh has its facets,
+// (each feature line's drawn element, else its kind: read_meshtags(mesh, "facet_tags") once the mesh has its facets,
 // mesh.topology.create_connectivity(1, 2)). ParaView opens it too. Orders 1 and 2 only: XDMF's
 // topology types stop at Triangle_6 and Edge_3 (dolfinx 0.5 reads no 10-node triangle from XDMF;
 // order 3 goes through .msh). Both files depend only on the mesh.
@@ -25,8 +25,9 @@ struct XdmfFiles {
   std::string data;  // the .h5 file's bytes
 };
 
-// The two files for `mesh`, the XML naming the data file `data_name`. A line in several physical
-// groups (the same nodes listed more than once) carries its first: a facet has one tag in dolfinx.
+// The two files for `mesh`, the XML naming the data file `data_name`. A facet has one tag in
+// dolfinx: a line in several physical groups carries the first drawn element's it lies on, else
+// its kind's (primary, secondary, boundary); the .msh has them all.
 // Throws std::invalid_argument for an order xdmf_order_supported refuses, std::logic_error if the
 // mesh has a structure_error(), std::runtime_error if HDF5 fails.
 XdmfFiles xdmf_files(const HighOrderMesh& mesh, const std::string& data_name);

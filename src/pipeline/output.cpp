@@ -1,12 +1,17 @@
 #include "pipeline/output.hpp"
 
+#include <algorithm>
+#include <map>
 #include <stdexcept>
+#include <utility>
 
 #include "io/curved_mesh.hpp"
 #include "io/mesh_svg.hpp"
 #include "io/msh_writer.hpp"
 #include "io/output_file.hpp"
 #include "io/vtu_writer.hpp"
+#include "regions/faces.hpp"
+#include "regions/groups.hpp"
 
 namespace curvemesh::pipeline {
 
@@ -28,8 +33,79 @@ bool is_colour(const svg::Paint& p) {
 
 io::HighOrderMesh high_order_mesh(const Result& r) {
   require_mesh(r);
-  if (r.painted) return r.painted->mesh;
-  return r.curved ? io::curved_mesh(*r.curved) : io::linear_mesh(r.linear);
+  io::HighOrderMesh m = r.painted ? r.painted->mesh : r.curved ? io::curved_mesh(*r.curved) : io::linear_mesh(r.linear);
+  regions::add_line_groups(m, line_elements(r, m), r.soup);
+  return m;
+}
+
+nlohmann::ordered_json groups_json(const io::HighOrderMesh& mesh) {
+  struct Measure {
+    int count = 0;
+    double size = 0;
+  };
+  std::map<std::pair<int, int>, Measure> groups;  // (dim, id)
+  for (int l = 0; l < mesh.line_count(); ++l) {
+    const double length = regions::line_length(mesh, l);
+    for (int g : mesh.groups_of_line(l)) {
+      Measure& m = groups[{1, g}];
+      ++m.count;
+      m.size += length;
+    }
+  }
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    if (mesh.triangle_physical[t] <= 0) continue;
+    Measure& m = groups[{2, mesh.triangle_physical[t]}];
+    ++m.count;
+    m.size += regions::triangle_area(mesh, t);
+  }
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const auto& [key, m] : groups) {
+    const auto name = mesh.physical_names.find(key);
+    const bool line = key.first == 1;
+    out.push_back({{"dim", key.first},
+                   {"id", key.second},
+                   {"name", name != mesh.physical_names.end() ? name->second : ""},
+                   {line ? "lines" : "triangles", m.count},
+                   {line ? "length" : "area", m.size}});
+  }
+  return out;
+}
+
+std::vector<std::vector<int>> line_elements(const Result& r, const io::HighOrderMesh& mesh) {
+  require_mesh(r);
+  const mesh::TriMesh& corners = r.corners();
+  // The shared pieces of each feature, by (kind, section or segment).
+  std::map<std::pair<mesh::EdgeKind, int>, std::vector<const triangulate::SharedPiece*>> shared;
+  for (const triangulate::SharedPiece& p : r.shared) shared[{p.kind, p.source}].push_back(&p);
+  const auto source_of = [&](int curve) {
+    return curve >= 0 && curve < static_cast<int>(r.soup.curves.size()) ? r.soup.curves[curve].source : -1;
+  };
+  std::vector<std::vector<int>> out(mesh.line_count());
+  for (int l = 0; l < mesh.line_count(); ++l) {
+    const auto ends = mesh.line(l);
+    // A domain's mesh has its nodes renumbered: back to the whole mesh's (the corners' ids).
+    const int a = r.painted ? r.painted->node_origin.at(ends[0]) : ends[0];
+    const int b = r.painted ? r.painted->node_origin.at(ends[1]) : ends[1];
+    const mesh::EdgeFeature* f = corners.feature(a, b);
+    if (!f || (f->kind != mesh::EdgeKind::primary && f->kind != mesh::EdgeKind::secondary)) continue;
+    std::vector<int> curves{f->curve};
+    // Where along its feature the line's middle is: a curve parameter, or a fraction of a segment.
+    double at = (f->t_lo + f->t_hi) / 2;
+    if (f->kind == mesh::EdgeKind::secondary && f->source >= 0 &&
+        f->source < static_cast<int>(r.features.segments.size())) {
+      const features::Segment& s = r.features.segments[f->source];
+      curves.insert(curves.end(), s.other_curves.begin(), s.other_curves.end());
+      at = features::fraction_along(s, (corners.point(a) + corners.point(b)) / 2);
+    }
+    if (const auto it = shared.find({f->kind, f->source}); it != shared.end())
+      for (const triangulate::SharedPiece* p : it->second)
+        if (p->from <= at && at <= p->to) curves.insert(curves.end(), p->curves.begin(), p->curves.end());
+    for (int c : curves)
+      if (const int s = source_of(c); s >= 0) out[l].push_back(s);
+    std::sort(out[l].begin(), out[l].end());
+    out[l].erase(std::unique(out[l].begin(), out[l].end()), out[l].end());
+  }
+  return out;
 }
 
 std::vector<io::VtuCellScalars> cell_data(const Result& r) {

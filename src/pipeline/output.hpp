@@ -1,6 +1,7 @@
 #pragma once
 // What a pipeline result becomes: the mesh as files (.msh, .vtu, .svg), as a plain high-order
 // mesh, and as the finished drawing the applications solve on.
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -12,13 +13,29 @@
 namespace curvemesh::pipeline {
 
 // The result's mesh (curved when it was curved, else linear) as plain arrays: the domain's
-// triangles, tagged by region, when the run was asked for them (RunOptions). Throws
+// triangles, tagged by region, when the run was asked for them (RunOptions); its lines in the
+// groups of regions/groups.hpp (their kind, "border", each drawn element's). Throws
 // std::logic_error when no stage made a mesh.
 io::HighOrderMesh high_order_mesh(const Result& result);
+
+// The physical groups of `mesh`, by dimension and id, as `--stats` lists them: each one's dim, id,
+// name, and lines and total length (lines) or triangles and area (triangles).
+nlohmann::ordered_json groups_json(const io::HighOrderMesh& mesh);
+
+// Per line of `mesh` (high_order_mesh of the same result, or the mesh it is made from): the drawn
+// elements (indices into result.soup.sources) whose curves it lies on, ascending: the element of
+// the curve its feature follows, and where curves of several elements coincide (two shapes sharing
+// a side) every one of them, decided at the line's middle (triangulate::SharedPiece); none for a
+// side of the box or a line of a .poly file.
+std::vector<std::vector<int>> line_elements(const Result& result, const io::HighOrderMesh& mesh);
 
 // What the .vtu carries per triangle beyond its physical tag: with a domain or regions, its
 // "face" (in the whole mesh) and, with regions, its "region" (physical tag).
 std::vector<io::VtuCellScalars> cell_data(const Result& result);
+
+// The physical groups of `mesh`, by dimension and id, as `--stats` lists them: each one's dim, id,
+// name, and lines and total length (lines) or triangles and area (triangles).
+nlohmann::ordered_json groups_json(const io::HighOrderMesh& mesh);
 
 // Per line of `mesh` (high_order_mesh of the same result): the soup curve it lies on, from the
 // feature of its two ends in result.corners() (the vertices are the mesh's first nodes, same

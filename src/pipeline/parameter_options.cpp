@@ -113,8 +113,8 @@ std::vector<ParameterOption> run_options() {
       {"--regions", "--regions", "regions", "", "run", Kind::flag, 0, 1, false, 1, {},
        "tag the triangles by what the drawing paints on them, as a browser does (fill, fill-rule, transforms, "
        "<use>, CSS; the topmost filled element wins): one physical surface per visible element, named by its id "
-       "(else TAG#INDEX, its index in the document), and 'background' where nothing is filled; --stats lists them "
-       "with fill, triangles and area; --svg fills each triangle with its element's colour. Opacity, gradients and "
+       "(else TAG#INDEX, its index in the document), and 'background' where nothing is filled, with the same ids "
+       "whatever --domain keeps; --stats lists them with fill, triangles and area; --svg fills each triangle with its element's colour. Opacity, gradients and "
        "patterns do not change what covers what; clip paths and masks are ignored (with a warning). The line "
        "closing an open filled subpath becomes a feature",
        CURVEMESH_FIELD(regions, bool)},

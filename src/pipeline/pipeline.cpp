@@ -10,6 +10,7 @@
 #include "base/limits.hpp"
 #include "features/poly_input.hpp"
 #include "io/curved_mesh.hpp"
+#include "pipeline/output.hpp"
 #include "svg/drawing_size.hpp"
 #include "svg/error.hpp"
 #include "svg/reader.hpp"
@@ -261,7 +262,9 @@ Source Source::curves(svg::FeatureSoup soup, std::string name) {
 
 Source Source::beziers(const std::vector<std::array<geometry::Vec2, 4>>& curves, std::string name) {
   svg::FeatureSoup soup;
-  soup.sources.push_back({"path", "", 0, 1});
+  // Numbered as the reader numbers the one <path> of a document that draws them (the root is
+  // element 0): the same file, the same group name "path#1".
+  soup.sources.push_back({"path", "", 1, 1});
   soup.curves.reserve(curves.size());
   for (const auto& p : curves)
     soup.curves.push_back({geometry::CubicBezier(p[0], p[1], p[2], p[3]), 0, {}, {}, {}, {}});
@@ -376,6 +379,7 @@ Result run_stages(const Source& source, const Parameters& parameters, const RunO
                           {"method", triangulate::method_name(tri.stats.method)}};
   r.box = tri.box;
   r.triangulate_stats = tri.stats;
+  r.shared = std::move(tri.shared);
   r.linear = std::move(tri.mesh);
   r.constraints = triangulate::invariant_inputs(f, r.box);
   r.last = Stage::triangulate;
@@ -423,7 +427,10 @@ Result run_stages(const Source& source, const Parameters& parameters, const RunO
 
 Result run(const Source& source, const Parameters& parameters, const RunOptions& options) {
   try {
-    return run_stages(source, parameters, options);
+    Result r = run_stages(source, parameters, options);
+    // The groups a solver selects by, with their ids (regions/groups.hpp), as the .msh holds them.
+    if (r.last >= Stage::triangulate) r.stats["groups"] = groups_json(high_order_mesh(r));
+    return r;
   } catch (const base::LimitExceeded& e) {
     throw invalid(source.name + ": " + e.what());
   }

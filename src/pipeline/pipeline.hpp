@@ -81,6 +81,7 @@ struct Result {
   features::Features features;              // features
   geometry::Box2 box;                       // triangulate: the outer box
   mesh::Constraints constraints;            // triangulate: what the invariants know of the features
+  std::vector<triangulate::SharedPiece> shared;  // triangulate: where features of several curves coincide
   mesh::TriMesh linear;                     // triangulate, optimize (moved into `curved` by curve)
   optimize::Quality quality;                // of the linear mesh, after triangulate or optimize
   std::optional<curve::CurvedMesh> curved;  // curve

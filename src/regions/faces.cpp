@@ -144,10 +144,44 @@ io::HighOrderMesh submesh(const io::HighOrderMesh& mesh, const std::vector<char>
     if (!line_kept[l]) continue;
     buffer.clear();
     for (int i : mesh.line(l)) buffer.push_back(node(i));
-    out.add_line(buffer, mesh.line_physical[l]);
+    out.add_line(buffer, mesh.line_physical[l], mesh.line_groups.empty() ? std::vector<int>{} : mesh.line_groups[l]);
     if (line_origin) line_origin->push_back(l);
   }
   return out;
+}
+
+double line_length(const io::HighOrderMesh& mesh, int l) {
+  const auto line = mesh.line(l);
+  const int order = mesh.order;
+  if (order == 1) return (mesh.nodes[line[1]] - mesh.nodes[line[0]]).norm();
+  // The line's nodes sit at s = 0, 1, then 1/order, ..., (order-1)/order: the polynomial through
+  // them, differentiated (Lagrange basis), its speed integrated.
+  static constexpr double kPoint[5] = {0.046910077030668004, 0.23076534494715845, 0.5, 0.76923465505284155,
+                                       0.95308992296933200};
+  static constexpr double kWeight[5] = {0.11846344252809454, 0.23931433524968324, 0.28444444444444444,
+                                        0.23931433524968324, 0.11846344252809454};
+  std::vector<geometry::Vec2> p(order + 1);
+  p[0] = mesh.nodes[line[0]];
+  p[order] = mesh.nodes[line[1]];
+  for (int k = 1; k < order; ++k) p[k] = mesh.nodes[line[1 + k]];
+  double length = 0;
+  for (int q = 0; q < 5; ++q) {
+    const double s = kPoint[q];
+    geometry::Vec2 dx = geometry::Vec2::Zero();
+    for (int i = 0; i <= order; ++i) {
+      const double si = double(i) / order;
+      double value = 1, slope = 0;
+      for (int j = 0; j <= order; ++j) {
+        if (j == i) continue;
+        const double sj = double(j) / order, denom = si - sj;
+        slope = slope * (s - sj) / denom + value / denom;
+        value *= (s - sj) / denom;
+      }
+      dx += slope * p[i];
+    }
+    length += kWeight[q] * dx.norm();
+  }
+  return length;
 }
 
 double triangle_area(const io::HighOrderMesh& mesh, int t) {

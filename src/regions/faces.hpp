@@ -60,6 +60,10 @@ std::vector<char> domain_triangles(const Classification& classification, Domain 
 io::HighOrderMesh submesh(const io::HighOrderMesh& mesh, const std::vector<char>& keep,
                           std::vector<int>* line_origin = nullptr, std::vector<int>* node_origin = nullptr);
 
+// The length of line l: exact for a straight line, to quadrature accuracy (Gauss–Legendre, five
+// points) for a curved one.
+double line_length(const io::HighOrderMesh& mesh, int l);
+
 // The area of triangle t, exact up to rounding for every order: Green's formula over its three
 // edges, each a polynomial curve of the triangle's order (Gauss–Legendre, exact for them).
 double triangle_area(const io::HighOrderMesh& mesh, int t);

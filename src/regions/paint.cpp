@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 #include <utility>
 
 #include "geometry/p2_triangle.hpp"
 #include "geometry/p3_triangle.hpp"
+#include "regions/groups.hpp"
 #include "regions/winding.hpp"
 
 namespace curvemesh::regions {
@@ -151,9 +153,49 @@ Classification classify(const io::HighOrderMesh& mesh, const std::vector<svg::Fi
 }
 
 int Painted::region_of(int triangle) const {
+  // Regions are listed by ascending physical tag.
   const int physical = mesh.triangle_physical.at(triangle);
-  return physical - 1;
+  const auto it = std::lower_bound(regions.begin(), regions.end(), physical,
+                                   [](const Region& r, int p) { return r.physical < p; });
+  if (it == regions.end() || it->physical != physical) throw std::logic_error("a triangle in no region");
+  return static_cast<int>(it - regions.begin());
 }
+
+namespace {
+
+// Tags the triangles of `whole` by region (regions/groups.hpp: numbered by the whole drawing, so
+// that a region's tag and name do not depend on the domain) and lists the regions the kept
+// triangles show, by tag.
+io::HighOrderMesh tag_by_region(const io::HighOrderMesh& whole, const std::vector<int>& triangle_layer,
+                                const std::vector<char>& keep, const svg::FeatureSoup& soup,
+                                std::vector<Region>& regions) {
+  const RegionKeys keys = region_keys(soup);
+  const int sources = static_cast<int>(soup.sources.size());
+  io::HighOrderMesh tagged = whole;
+  std::vector<char> shown(keys.names.size(), 0);
+  for (int t = 0; t < whole.triangle_count(); ++t) {
+    const int l = triangle_layer[t];
+    const int key = l < 0 ? 0 : keys.of_layer[l];
+    tagged.triangle_physical[t] = region_group(key, sources);
+    if (keep[t]) shown[key] = 1;
+  }
+  tagged.physical_names.clear();
+  for (const auto& [key, name] : whole.physical_names)
+    if (key.first == 1) tagged.physical_names[key] = name;
+  for (std::size_t k = 0; k < keys.names.size(); ++k) {
+    if (!shown[k]) continue;
+    Region r;
+    r.physical = region_group(static_cast<int>(k), sources);
+    r.name = keys.names[k];
+    r.fill = keys.fill[k];
+    r.source = keys.source[k];
+    tagged.physical_names[{2, r.physical}] = r.name;
+    regions.push_back(std::move(r));
+  }
+  return tagged;
+}
+
+}  // namespace
 
 Painted paint(const io::HighOrderMesh& whole, const Classification& c, const svg::FeatureSoup& soup, Domain domain,
               bool tag_regions) {
@@ -164,54 +206,7 @@ Painted paint(const io::HighOrderMesh& whole, const Classification& c, const svg
   if (classified)
     for (int t = 0; t < whole.triangle_count(); ++t) triangle_layer[t] = c.visible[c.faces.of_triangle[t]];
 
-  io::HighOrderMesh tagged = whole;
-  if (tag_regions) {
-    // Regions by (element, fill) in paint order of their first layer, the background first.
-    std::map<std::pair<int, std::string>, int> index;
-    std::vector<int> region_of_layer(soup.fills.size(), -1);
-    bool background = false;
-    for (int t = 0; t < whole.triangle_count(); ++t)
-      if (keep[t] && triangle_layer[t] < 0) background = true;
-    std::vector<char> used(soup.fills.size(), 0);
-    for (int t = 0; t < whole.triangle_count(); ++t)
-      if (keep[t] && triangle_layer[t] >= 0) used[triangle_layer[t]] = 1;
-    if (background) {
-      Region r;
-      r.name = "background";
-      out.regions.push_back(r);
-    }
-    for (std::size_t l = 0; l < soup.fills.size(); ++l) {
-      if (!used[l]) continue;
-      const svg::FillLayer& layer = soup.fills[l];
-      const auto [it, inserted] =
-          index.try_emplace({layer.source, layer.fill.to_string()}, static_cast<int>(out.regions.size()));
-      if (inserted) {
-        Region r;
-        const svg::SourceElement& e = soup.sources.at(layer.source);
-        r.name = !e.id.empty() ? e.id : e.tag + "#" + std::to_string(e.index);
-        r.fill = layer.fill;
-        r.source = layer.source;
-        out.regions.push_back(r);
-      }
-      region_of_layer[l] = it->second;
-    }
-    // The same element painted in two colours (through <use>): its names stay apart.
-    std::map<std::string, int> seen;
-    for (Region& r : out.regions)
-      if (const int n = seen[r.name]++; n > 0) r.name += "@" + std::to_string(n + 1);
-    tagged.physical_names.clear();
-    for (const auto& [key, name] : whole.physical_names)
-      if (key.first == 1) tagged.physical_names[key] = name;
-    for (std::size_t i = 0; i < out.regions.size(); ++i) {
-      out.regions[i].physical = static_cast<int>(i) + 1;
-      tagged.physical_names[{2, out.regions[i].physical}] = out.regions[i].name;
-    }
-    // Region i has physical tag i + 1; the background, when there is one, is region 0.
-    for (int t = 0; t < whole.triangle_count(); ++t) {
-      const int l = triangle_layer[t];
-      tagged.triangle_physical[t] = l < 0 ? 1 : region_of_layer[l] + 1;
-    }
-  }
+  const io::HighOrderMesh tagged = tag_regions ? tag_by_region(whole, triangle_layer, keep, soup, out.regions) : whole;
   out.mesh = submesh(tagged, keep, nullptr, &out.node_origin);
   for (int t = 0; t < whole.triangle_count(); ++t) {
     if (!keep[t]) continue;

@@ -43,8 +43,8 @@ Classification classify(const io::HighOrderMesh& mesh, const std::vector<svg::Fi
 
 // A part of the mesh's triangles tagged by what is painted on them.
 struct Region {
-  int physical = 0;    // its physical surface tag, from 1, in paint order (background first)
-  std::string name;    // the element's id, else TAG#INDEX (document index), or "background"
+  int physical = 0;    // its physical surface tag (regions/groups.hpp: region_group), the same in any domain
+  std::string name;    // the element's id, else TAG#INDEX (document index), or "background"; "@2"... on a repeat
   svg::Paint fill;     // none for the background
   int source = -1;     // the soup's source element, -1 for the background
   int triangles = 0;
@@ -56,13 +56,13 @@ struct Painted {
   std::vector<int> node_origin;     // per node of `mesh`: its node in the whole mesh
   std::vector<int> face;            // per triangle of `mesh`: its face in the whole mesh
   std::vector<int> layer;           // per triangle: its visible fill layer, -1 none (or not classified)
-  std::vector<Region> regions;      // empty unless tagged by region
+  std::vector<Region> regions;      // the regions the domain shows, by physical tag; empty unless tagged
   int region_of(int triangle) const;  // index into `regions` (tagged meshes only)
 };
 
 // The triangles of `whole` in `domain`, each tagged with the physical surface of its region when
-// `tag_regions` (one per visible element and fill, and "background"): what `curvemesh mesh
-// --regions --domain ...` writes. The classification must have its fills classified when
+// `tag_regions` (one per visible element and fill, and "background", numbered by the whole drawing:
+// regions/groups.hpp): what `curvemesh mesh --regions --domain ...` writes. The classification must have its fills classified when
 // tagging or for Domain::filled.
 Painted paint(const io::HighOrderMesh& whole, const Classification& classification, const svg::FeatureSoup& soup,
               Domain domain, bool tag_regions);

@@ -120,12 +120,15 @@ class Assembler {
   Assembler(const features::Features& f, const detail::Input& in, const detail::Triangulation& tri)
       : f_(f), in_(in), tri_(tri) {}
 
-  mesh::TriMesh run(Stats& stats) {
+  mesh::TriMesh run(Stats& stats, std::vector<SharedPiece>& shared) {
     mesh::TriMesh m;
     std::vector<Incidence> inc(tri_.vertices.size());
     std::vector<std::pair<std::array<int, 2>, mesh::EdgeFeature>> features;
     features.reserve(tri_.pieces.size());
-    for (const detail::Piece& piece : tri_.pieces) features.push_back({{piece.u, piece.w}, tag_piece(piece, inc)});
+    for (const detail::Piece& piece : tri_.pieces) {
+      features.push_back({{piece.u, piece.w}, tag_piece(piece, inc)});
+      share(piece, features.back().second, shared);
+    }
 
     for (std::size_t i = 0; i < tri_.vertices.size(); ++i) {
       const ArrangementVertex& v = tri_.vertices[i];
@@ -201,6 +204,36 @@ class Assembler {
     return feature;
   }
 
+  // The input curves of constraint c: a section's curve, a segment's and those it stands for too.
+  void add_curves(int c, std::vector<int>& out) const {
+    const InputConstraint& ic = in_.constraints[c];
+    if (ic.kind == mesh::EdgeKind::primary) out.push_back(f_.sections[ic.source].curve);
+    if (ic.kind != mesh::EdgeKind::secondary) return;
+    const features::Segment& s = f_.segments[ic.source];
+    out.push_back(s.curve);
+    out.insert(out.end(), s.other_curves.begin(), s.other_curves.end());
+  }
+
+  // Records the piece when it lies on other curves than the one its tag names.
+  void share(const detail::Piece& piece, const mesh::EdgeFeature& tag, std::vector<SharedPiece>& out) const {
+    if (tag.kind != mesh::EdgeKind::primary && tag.kind != mesh::EdgeKind::secondary) return;
+    std::vector<int> curves;
+    for (int k = piece.first; k < piece.last; ++k) add_curves(tri_.piece_constraints[k], curves);
+    std::sort(curves.begin(), curves.end());
+    curves.erase(std::unique(curves.begin(), curves.end()), curves.end());
+    std::erase_if(curves, [&](int c) { return c < 0 || c == tag.curve; });
+    if (curves.empty()) return;
+    SharedPiece p{tag.kind, tag.source, std::min(tag.t_lo, tag.t_hi), std::max(tag.t_lo, tag.t_hi), std::move(curves)};
+    if (tag.kind == mesh::EdgeKind::secondary) {
+      const features::Segment& s = f_.segments[tag.source];
+      const double a = features::fraction_along(s, tri_.vertices[piece.u].approx),
+                   b = features::fraction_along(s, tri_.vertices[piece.w].approx);
+      p.from = std::min(a, b);
+      p.to = std::max(a, b);
+    }
+    out.push_back(std::move(p));
+  }
+
   const features::Features& f_;
   const detail::Input& in_;
   const detail::Triangulation& tri_;
@@ -250,7 +283,7 @@ Result triangulate(const features::Features& features, const Options& options) {
   std::optional<detail::Triangulation> tri = detail::triangulate_arrangement(input);
   if (!tri) tri = detail::triangulate_exact(input);
   result.stats.method = tri->method;
-  result.mesh = Assembler(features, input, *tri).run(result.stats);
+  result.mesh = Assembler(features, input, *tri).run(result.stats, result.shared);
   tri.reset();
   round_vertices(result.mesh);
   result.stats.vertices = result.mesh.vertex_count();

@@ -11,6 +11,7 @@
 // Never fails on finite input, but for a triangulation larger than Options::max_triangles.
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "features/features.hpp"
 #include "mesh/tri_mesh.hpp"
@@ -41,10 +42,24 @@ struct Stats {
   double seconds = 0;
 };
 
+// A piece of the arrangement that lies on the curves of more than one input curve (two shapes
+// sharing a side): the mesh's edge there takes the tag of one feature (primary beats secondary,
+// then the lower section or segment), and this keeps the others. What the output's groups say a
+// line lies on (pipeline::line_elements).
+struct SharedPiece {
+  mesh::EdgeKind kind = mesh::EdgeKind::primary;  // of the feature the edge's tag names
+  int source = -1;                                // its section (primary) or segment (secondary)
+  // The piece's interval along that feature, from <= to: the curve's parameters (primary), the
+  // fraction of the way from the segment's a to its b (secondary).
+  double from = 0, to = 0;
+  std::vector<int> curves;  // the other input curves on the piece, ascending
+};
+
 struct Result {
   mesh::TriMesh mesh;
   geometry::Box2 box;  // the outer box (sides: 0 y = min, 1 x = max, 2 y = max, 3 x = min)
   Stats stats;
+  std::vector<SharedPiece> shared;  // in the order of the pieces
 };
 
 Result triangulate(const features::Features& features, const Options& options);

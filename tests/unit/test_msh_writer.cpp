@@ -6,9 +6,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
+#include <tuple>
 #include <sstream>
 
 #include "io/mesh_svg.hpp"
+#include "io/msh_reader.hpp"
 #include "io/msh_writer.hpp"
 #include "scratch_dir.hpp"
 
@@ -114,6 +117,93 @@ TEST(MshWriter, GmshAndMeshioReadBothVersions) {
     const auto script_path = path + ".py";
     std::ofstream(script_path) << script;
     EXPECT_EQ(std::system(("/usr/bin/python3 " + script_path + " " + path).c_str()), 0) << "version " << version;
+  }
+}
+
+// The square with the diagonal in two further groups (6 "a", 7 "b"), the box sides on the border,
+// the bottom side also in group 8 "c".
+HighOrderMesh grouped() {
+  HighOrderMesh m = linear_mesh(square());
+  m.line_groups.assign(m.line_count(), {});
+  for (int l = 0; l < m.line_count(); ++l) {
+    if (m.line_physical[l] == kPhysicalPrimary) m.line_groups[l] = {6, 7};
+    if (m.line_physical[l] != kPhysicalBoundary) continue;
+    m.line_groups[l] = {kPhysicalBorder};
+    const auto ends = m.line(l);
+    if (m.nodes[ends[0]].y() == 0 && m.nodes[ends[1]].y() == 0) m.line_groups[l].push_back(8);
+  }
+  m.physical_names[{1, 6}] = "a";
+  m.physical_names[{1, 7}] = "b";
+  m.physical_names[{1, 8}] = "c";
+  return m;
+}
+
+TEST(MshWriter, ALineInSeveralGroupsIsOneElementIn41AndOnePerGroupIn22) {
+  const HighOrderMesh m = grouped();
+  const std::string v41 = msh_string(m);
+  EXPECT_EQ(section(v41, "PhysicalNames"),
+            "7\n1 1 \"primary\"\n1 3 \"boundary\"\n1 5 \"border\"\n1 6 \"a\"\n1 7 \"b\"\n1 8 \"c\"\n2 4 \"domain\"\n");
+  // One entity per set of groups: {1 6 7}, {3 5}, {3 5 8}; each line once.
+  const std::string entities = section(v41, "Entities");
+  EXPECT_THAT(entities, testing::StartsWith("0 3 1 0\n"));
+  EXPECT_THAT(entities, testing::HasSubstr(" 3 1 6 7 0\n"));
+  EXPECT_THAT(entities, testing::HasSubstr(" 2 3 5 0\n"));
+  EXPECT_THAT(entities, testing::HasSubstr(" 3 3 5 8 0\n"));
+  EXPECT_THAT(section(v41, "Elements"), testing::StartsWith("4 7 1 7\n"));
+  // 2.2: the diagonal three times, the bottom side three times, the other sides twice.
+  EXPECT_THAT(section(msh_string(m, {22}), "Elements"), testing::StartsWith(std::to_string(3 + 3 + 3 * 2 + 2) + "\n"));
+  // Read back: the same lines in the same groups (in the file's order: by entity).
+  const HighOrderMesh back = parse_msh(v41);
+  const auto lines = [](const HighOrderMesh& h) {
+    std::multiset<std::tuple<int, int, std::vector<int>>> out;
+    for (int l = 0; l < h.line_count(); ++l) out.insert({h.line(l)[0], h.line(l)[1], h.groups_of_line(l)});
+    return out;
+  };
+  EXPECT_EQ(lines(back), lines(m));
+  EXPECT_EQ(msh_string(back), v41);
+}
+
+TEST(MshWriter, BoundaryOnlyWritesTheBorderInOneGroupEach) {
+  MshOptions o;
+  o.boundary_only = true;
+  for (int version : {41, 22}) {
+    o.version = version;
+    const std::string text = msh_string(grouped(), o);
+    // The bottom side in "c", the three others in "boundary"; no diagonal, no "border".
+    EXPECT_EQ(section(text, "PhysicalNames"), "3\n1 3 \"boundary\"\n1 8 \"c\"\n2 4 \"domain\"\n");
+    EXPECT_THAT(section(text, "Elements"), testing::StartsWith(version == 41 ? "3 6 1 6\n" : "6\n"));
+    if (version == 41) {
+      EXPECT_THAT(section(text, "Entities"), testing::StartsWith("0 2 1 0\n"));
+      EXPECT_THAT(section(text, "Entities"), testing::Not(testing::HasSubstr(" 2 3 ")));
+    }
+  }
+}
+
+TEST(MshWriter, GmshAndMeshioSeeEveryGroupOfALine) {
+  if (std::system("/usr/bin/python3 -c 'import gmsh, meshio' 2>/dev/null") != 0) GTEST_SKIP() << "gmsh or meshio missing";
+  const testing_support::ScratchDir dir;
+  for (int version : {41, 22}) {
+    const auto path = dir / ("groups_" + std::to_string(version) + ".msh");
+    write_msh(grouped(), path, {version});
+    // Per group: how many line elements Gmsh puts in it, and (4.1) meshio's cell sets.
+    const std::string script =
+        "import sys, gmsh, meshio\n"
+        "gmsh.initialize(); gmsh.option.setNumber('General.Terminal', 0); gmsh.open(sys.argv[1])\n"
+        "count = {}\n"
+        "for d, t in gmsh.model.getPhysicalGroups(1):\n"
+        "    name = gmsh.model.getPhysicalName(d, t)\n"
+        "    count[name] = sum(len(gmsh.model.mesh.getElements(1, e)[1][0])\n"
+        "                      for e in gmsh.model.getEntitiesForPhysicalGroup(d, t))\n"
+        "gmsh.finalize()\n"
+        "assert count == {'primary': 1, 'boundary': 4, 'border': 4, 'a': 1, 'b': 1, 'c': 1}, count\n"
+        "if sys.argv[2] == '41':\n"
+        "    m = meshio.read(sys.argv[1])\n"
+        "    sets = {k: sum(len(x) for x in v if x is not None) for k, v in m.cell_sets.items() if k in count}\n"
+        "    assert sets == count, sets\n";
+    const auto script_path = path + ".py";
+    std::ofstream(script_path) << script;
+    EXPECT_EQ(std::system(("/usr/bin/python3 " + script_path + " " + path + " " + std::to_string(version)).c_str()), 0)
+        << "version " << version;
   }
 }
 

@@ -2,17 +2,20 @@
 // rules, paint order), the reader's fills, and `mesh --regions` / `--domain` through the pipeline.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
 #include <set>
 #include <string>
+#include <tuple>
 
 #include "curvemesh/parameters.hpp"
 #include "pipeline/output.hpp"
 #include "pipeline/pipeline.hpp"
 #include "geometry/p3_triangle.hpp"
 #include "regions/faces.hpp"
+#include "regions/groups.hpp"
 #include "regions/paint.hpp"
 #include "regions/winding.hpp"
 #include "svg/reader.hpp"
@@ -250,10 +253,11 @@ TEST(Regions, LoneCircleAreaIsItsCurvesArea) {
   const auto& regions = r.painted->regions;
   ASSERT_EQ(regions.size(), 2u);
   EXPECT_EQ(regions[0].name, "background");
-  EXPECT_EQ(regions[0].physical, 1);
+  // One drawn element: lines 1..5 fixed, 6 the circle's, then the background and the circle.
+  EXPECT_EQ(regions[0].physical, 7);
   EXPECT_EQ(regions[1].name, "c");
   EXPECT_EQ(regions[1].fill.to_string(), "#336699");
-  EXPECT_EQ(regions[1].physical, 2);
+  EXPECT_EQ(regions[1].physical, 8);
   // The circle is four cubic arcs; the curved triangles follow them exactly, so the region's area
   // is the area those arcs enclose, to rounding. (Those arcs enclose π r² (1 + 2.8e-4): the
   // quarter-arc cubic lies outside the circle.)
@@ -402,3 +406,78 @@ TEST(Regions, AnUndecidableFaceFailsNamingTheElement) {
     EXPECT_NE(std::string(e.what()).find("<path id=\"trap\"> (line 9)"), std::string::npos) << e.what();
   }
 }
+
+// The groups a solver selects by (regions/groups.hpp).
+namespace {
+
+// Two squares sharing a side, a ring drawn over nothing (stroke only), one id twice and one that is
+// a fixed group's name.
+const std::string kSharing = R"(<rect id="left" x="1" y="1" width="4" height="4" fill="#ff0000"/>
+<rect id="right" x="5" y="1" width="4" height="4" fill="#0000ff"/>
+<circle id="border" cx="3" cy="3" r="1" fill="none" stroke="black"/>
+<circle id="right" cx="7" cy="3" r="1" fill="#00ff00"/>)";
+
+// {id: (dim, name, count, length or area)} of the stats' groups.
+std::map<int, std::tuple<int, std::string, int, double>> groups_of(const pipeline::Result& r) {
+  std::map<int, std::tuple<int, std::string, int, double>> out;
+  for (const auto& g : r.stats.at("groups")) {
+    const bool line = g["dim"] == 1;
+    out[g["id"].get<int>()] = {g["dim"].get<int>(), g["name"].get<std::string>(),
+                               g[line ? "lines" : "triangles"].get<int>(), g[line ? "length" : "area"].get<double>()};
+  }
+  return out;
+}
+
+TEST(Groups, ElementsBorderAndRegionsAreNumberedByTheDrawing) {
+  for (int order : {1, 3}) {
+    SCOPED_TRACE("order " + std::to_string(order));
+    Parameters p;
+    p.order = order;
+    const auto box = groups_of(mesh_painted(doc(kSharing), regions::Domain::box, true, p));
+    const auto filled = groups_of(mesh_painted(doc(kSharing), regions::Domain::filled, true, p));
+    // Four drawn elements: their lines 6..9, the regions from 10 (10 the background).
+    EXPECT_EQ(std::get<1>(box.at(5)), "border");
+    EXPECT_EQ(std::get<1>(box.at(6)), "left");
+    EXPECT_EQ(std::get<1>(box.at(7)), "right");
+    EXPECT_EQ(std::get<1>(box.at(8)), "border@2");  // not the border's name
+    EXPECT_EQ(std::get<1>(box.at(9)), "right@2");
+    EXPECT_EQ(std::get<1>(box.at(10)), "background");
+    EXPECT_FALSE(filled.contains(10));  // the filled domain has no background
+    for (const auto& [id, g] : filled) {
+      // The same ids and names in both domains, lines below regions.
+      if (std::get<0>(g) == 2) {
+        EXPECT_GE(id, 10);
+        EXPECT_EQ(std::get<1>(box.at(id)), std::get<1>(g));
+        EXPECT_NEAR(std::get<3>(box.at(id)), std::get<3>(g), 1e-9);
+      } else {
+        EXPECT_LT(id, 10);
+      }
+    }
+    // Each square's group has its whole outline, the shared side included.
+    EXPECT_NEAR(std::get<3>(box.at(6)), 16, 1e-9);
+    EXPECT_NEAR(std::get<3>(filled.at(6)), 16, 1e-9);
+    // The border: the box's sides, or the outline of the two squares together (the green circle
+    // lies inside the right one).
+    EXPECT_EQ(std::get<3>(box.at(5)), std::get<3>(box.at(3)));
+    EXPECT_NEAR(std::get<3>(filled.at(5)), 24, 1e-9);
+  }
+}
+
+TEST(Groups, EveryLineOnTheBorderAndNoneInside) {
+  const pipeline::Result r = mesh_painted(doc(kSharing), regions::Domain::filled, true);
+  const io::HighOrderMesh m = pipeline::high_order_mesh(r);
+  const std::vector<char> border = regions::border_lines(m);
+  const auto triangles_on = regions::edge_triangles(m);
+  int on_border = 0;
+  for (const auto& [edge, ts] : triangles_on) on_border += ts.size() == 1;
+  int tagged = 0;
+  for (int l = 0; l < m.line_count(); ++l) {
+    const std::vector<int> g = m.groups_of_line(l);
+    const bool in_border = std::find(g.begin(), g.end(), io::kPhysicalBorder) != g.end();
+    EXPECT_EQ(in_border, bool(border[l]));
+    tagged += in_border;
+  }
+  EXPECT_EQ(tagged, on_border);  // every edge of the border is a line of the group
+}
+
+}  // namespace
