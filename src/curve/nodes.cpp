@@ -115,7 +115,7 @@ geometry::P2Nodes Builder::p2_element(const mesh::Triangle& tri) const {
 // Sets p[9] to the first certified centre candidate (geometry::p3_centre_candidates; its index in
 // `choice`, its scaled Jacobian in `scaled`) and returns true, or returns false. The candidate that
 // reproduces quadratic maps exactly comes first: finite elements on the mesh need it for their
-// full order (with the paper's centre, P2 on a disk converges at L2 rate 2.65 instead of 3;
+// full order (with the paper's centre, P2 on a disk converges at L2 rate 2.35 instead of 3;
 // fem/convergence.hpp).
 bool Builder::choose_centre(geometry::P3Nodes& p, int& choice, double& scaled) const {
   const std::array<Vec2, 3> centres = geometry::p3_centre_candidates(p);

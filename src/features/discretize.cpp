@@ -59,9 +59,23 @@ class Discretizer {
   }
 
  private:
+  // The chain input curve `index` lies on: the previous curve's when both are pieces of one arc.
+  void enter_chain(int index) {
+    const svg::SoupCurve& curve = soup_.curves[index];
+    const bool continues = index > 0 && curve.arc >= 0 && soup_.curves[index - 1].arc == curve.arc;
+    if (!continues) {
+      out_.chains.push_back({});
+      chain_first_ = index;
+      curve_along_ = 0;
+    }
+    // Closed once its last piece ends where its first starts: an arc's pieces only (a single
+    // input curve that closes on itself keeps the rule of every input curve).
+    out_.chains.back().closed = continues && curve.bezier.p[3] == soup_.curves[chain_first_].bezier.p[0];
+  }
+
   void add_curve(int index) {
     const CubicBezier& c = soup_.curves[index].bezier;
-    curve_along_ = 0;
+    enter_chain(index);
     if (geometry::is_degenerate(c, len_.eps_m)) {
       const Vec2 centre = (c.p[0] + c.p[1] + c.p[2] + c.p[3]) / 4.0;
       out_.points.push_back({centre, soup_.curves[index].source});
@@ -141,12 +155,14 @@ class Discretizer {
   }
 
   void finish_section(CurveSection& s) {
+    s.chain = static_cast<int>(out_.chains.size()) - 1;
     s.piece_count = static_cast<int>(out_.pieces.size()) - s.first_piece;
     for (int k = s.first_piece; k < s.first_piece + s.piece_count; ++k) {
       out_.pieces[k].along = curve_along_ + s.length;
       s.length += (out_.pieces[k].b - out_.pieces[k].a).norm();
     }
     curve_along_ += s.length;
+    out_.chains.back().length += s.length;
     out_.sections.push_back(s);
   }
 
@@ -191,7 +207,8 @@ class Discretizer {
   const svg::FeatureSoup& soup_;
   const Lengths& len_;
   Discretized out_;
-  double curve_along_ = 0;  // polyline length of the current input curve so far
+  double curve_along_ = 0;  // polyline length of the current chain so far
+  int chain_first_ = 0;     // the first input curve of the current chain
 };
 
 }  // namespace

@@ -15,13 +15,22 @@ struct Piece {
   // end tangents, which a curved edge follows; the chord's directions for a straight curve.
   Vec2 leave_a = Vec2::Zero(), leave_b = Vec2::Zero();
   bool unfit = false;  // shorter than l_m, curvature above α / l_m, or not resolvable: secondary whatever happens
-  double along = 0;         // polyline length of its input curve before it
+  double along = 0;         // polyline length of its chain before it
   Kind kind = Kind::primary;
+};
+
+// One smooth curve of the drawing: an input curve, or the consecutive input curves one arc was cut
+// into (svg::SoupCurve::arc), which only round-off parts. Closed when it ends where it starts (a
+// circle, an ellipse).
+struct Chain {
+  double length = 0;  // of its polyline
+  bool closed = false;
 };
 
 // A piece of an input curve between inflection / turning split points (or a straight curve).
 struct CurveSection {
   int curve = -1;
+  int chain = -1;  // index into Discretized::chains
   double t0 = 0, t1 = 1;
   bool straight = false;  // a straight input curve, sampled along the chord p0 -> p3
   Vec2 line_a = Vec2::Zero(), line_b = Vec2::Zero();  // the chord of a straight curve
@@ -30,6 +39,7 @@ struct CurveSection {
 };
 
 struct Discretized {
+  std::vector<Chain> chains;
   std::vector<CurveSection> sections;
   std::vector<Piece> pieces;
   std::vector<IsolatedPoint> points;

@@ -3,10 +3,11 @@
 // quadratic.
 //
 // The rule (Definition 3.1 made discrete): two primary pieces are at least μ apart, except
-//  - pieces of one input curve joined by at most π/2·μ of its polyline (consecutive pieces, and
-//    the pieces of a bend tighter than μ: one connected component in the μ-ball), unless the
-//    curve folds back between them (a cusp sharper than the junction angle, or the two pieces
-//    pointing in opposite directions), and
+//  - pieces of one input curve (or of one arc, which the reader cut into several cubics) joined
+//    by at most π/2·μ of its polyline (consecutive pieces, and the pieces of a bend tighter than
+//    μ: one connected component in the μ-ball), unless the curve folds back between them (a
+//    cusp sharper than the junction angle, or the two pieces pointing in opposite directions),
+//    and
 //  - pieces that share an endpoint exactly (a path's corners, shapes that touch at a vertex)
 //    and meet there at an angle of at least the junction angle (default α = 10°), so that a
 //    triangle with minimal angle α fits between them. Both their chords and their curves (the
@@ -66,20 +67,26 @@ double angle_between(const Vec2& u, const Vec2& v) {
 static bool in_conflict(const Discretized& d, int i, int j, const Lengths& len) {
   const Piece& p = d.pieces[i];
   const Piece& q = d.pieces[j];
-  // One connected component inside the μ-ball (Definition 3.1): pieces of one input curve joined
-  // by at most π/2·μ of its polyline, as on a tight bend, may come close.
+  // One connected component inside the μ-ball (Definition 3.1): pieces of one chain (an input
+  // curve, or the pieces of one arc) joined by at most π/2·μ of its polyline, as on a tight bend,
+  // may come close; around a closed chain (a circle) the way across its start counts too.
   // Not where the curve folds back on itself, though: consecutive pieces meeting at a cusp at
   // less than the junction angle, or pieces running in opposite directions, would leave a sliver
   // between them that no triangle of minimal angle α fits.
-  if (d.sections[p.section].curve == d.sections[q.section].curve) {
-    const Piece& first = i < j ? p : q;
-    const Piece& second = i < j ? q : p;
-    const double gap = second.along - (first.along + (first.b - first.a).norm());
+  const int chain = d.sections[p.section].chain;
+  if (chain == d.sections[q.section].chain) {
+    const Piece* first = i < j ? &p : &q;  // pieces are numbered along their chain
+    const Piece* second = i < j ? &q : &p;
+    double gap = second->along - (first->along + (first->b - first->a).norm());
+    if (d.chains[chain].closed) {
+      const double across = d.chains[chain].length - (second->along + (second->b - second->a).norm()) + first->along;
+      if (across < gap) gap = across, std::swap(first, second);
+    }
     if (gap <= 0.5 * std::numbers::pi * len.mu) {
-      if (first.b == second.a)
-        return angle_between(first.a - first.b, second.b - second.a) < len.junction_angle_rad ||
-               angle_between(first.leave_b, second.leave_a) < len.junction_angle_rad;
-      return (first.b - first.a).dot(second.b - second.a) <= 0;
+      if (first->b == second->a)
+        return angle_between(first->a - first->b, second->b - second->a) < len.junction_angle_rad ||
+               angle_between(first->leave_b, second->leave_a) < len.junction_angle_rad;
+      return (first->b - first->a).dot(second->b - second->a) <= 0;
     }
   }
   // A shared endpoint: allowed when the pieces leave it at a wide enough angle.

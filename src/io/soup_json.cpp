@@ -12,6 +12,7 @@ nlohmann::ordered_json soup_to_json(const svg::FeatureSoup& soup) {
     ordered_json p = ordered_json::array();
     for (const auto& q : c.bezier.p) p.push_back(q.x()), p.push_back(q.y());
     curves.push_back({{"p", std::move(p)}, {"source", c.source}, {"stroke", c.stroke.to_string()}, {"fill", c.fill.to_string()}});
+    if (c.arc >= 0) curves.back()["arc"] = c.arc;  // the cubics of one arc (SoupCurve::arc)
   }
   j["curves"] = std::move(curves);
   ordered_json points = ordered_json::array(), point_sources = ordered_json::array();

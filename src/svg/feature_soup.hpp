@@ -47,6 +47,11 @@ struct SoupCurve {
   // drawing, so the reader has already swapped the two for such elements.
   Paint left;
   Paint right;
+  // The arc this curve is a piece of (an SVG arc command, a circle, an ellipse, a rounded rect's
+  // corner: cut into cubics only to stay within kArcTolerance of the conic), numbered in the soup,
+  // its pieces consecutive in `curves`; -1 for every other curve. The features stage takes the
+  // pieces of one arc for one curve.
+  int arc = -1;
 };
 
 // How a shape's inside is decided from the winding number of its outline (SVG `fill-rule`).

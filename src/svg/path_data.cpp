@@ -82,9 +82,14 @@ class PathParser {
     }
     return out_.back();
   }
-  void add(const CubicBezier& c) {
+  // `continues`: c is a piece of the arc the segment before it is a piece of (Subpath::continues).
+  void add(const CubicBezier& c, bool continues = false) {
     Subpath& sp = open_subpath();
     if (!sp.segments.empty()) count_piece();  // a subpath's first segment takes its place
+    if (continues) {
+      sp.continues.resize(sp.segments.size(), 0);
+      sp.continues.push_back(1);
+    }
     sp.segments.push_back(c);
     current_ = c.p[3];
   }
@@ -168,7 +173,8 @@ class PathParser {
         const bool sweep = in_.flag();
         const Vec2 end = pair(rel);
         const Vec2 from = current_;
-        for (const CubicBezier& c : arc_to_cubics(from, rx, ry, rotation, large, sweep, end)) add(c);
+        const std::vector<CubicBezier> pieces = arc_to_cubics(from, rx, ry, rotation, large, sweep, end);
+        for (std::size_t k = 0; k < pieces.size(); ++k) add(pieces[k], k > 0);
         current_ = end;
         break;
       }

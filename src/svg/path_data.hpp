@@ -15,6 +15,21 @@ struct Subpath {
   Vec2 start = Vec2::Zero();           // the moveto point
   std::vector<CubicBezier> segments;   // lines, quadratics and arc pieces all as cubics
   bool closed = false;                 // ended by Z (a closing segment was added if needed)
+  // Per segment, whether it continues the segment before it as a piece of the same arc: an arc is
+  // cut into several cubics only to stay within kArcTolerance (svg/arc.hpp), and the features
+  // stage takes the pieces for one curve. Shorter than `segments` (empty) where none does.
+  std::vector<char> continues;
+
+  bool continues_at(std::size_t i) const { return i < continues.size() && continues[i]; }
+  // Appends the pieces of one arc; with `joins_previous`, its first piece continues the segment
+  // before it too (two arcs of one ellipse meeting without a side between them).
+  void add_arc(const std::vector<CubicBezier>& pieces, bool joins_previous = false) {
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+      continues.resize(segments.size(), 0);
+      continues.push_back(k > 0 || (joins_previous && !segments.empty()));
+      segments.push_back(pieces[k]);
+    }
+  }
 };
 
 // Parses path data. Throws SyntaxError (with the offset into `d`) on an unknown command, a

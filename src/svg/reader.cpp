@@ -100,7 +100,34 @@ struct PendingSubpath {
   int source;
   Paint stroke, fill, left, right;
   bool filled = false;  // drawn with a fill (its FillLayer is made already)
+  bool closed = false;  // ended by Z
+  std::vector<char> continues;  // Subpath::continues
 };
+
+// A closed subpath whose last curve came back to its start only to within `tolerance` (relative
+// path data that does not sum back exactly, an editor's rounding): Z then added a straight line of
+// that length back to the start, or the data has one. Such a line is degenerate — the features
+// stage makes it an isolated point — and leaves the last curve ending beside the first instead of
+// at it, so that the two look like curves crossing within μ and one of them loses its primary
+// piece there to a straight secondary one. The degenerate closing pieces are dropped instead, and
+// the last curve is moved onto the start (its end and last control point together, by at most
+// `tolerance`, keeping its end tangent): the outline closes exactly, one smooth curve.
+void close_exactly(PendingSubpath& sp, double tolerance) {
+  if (!sp.closed) return;
+  auto at_start = [&](const CubicBezier& c) {
+    for (const Vec2& q : c.p)
+      if ((q - sp.start).norm() > tolerance) return false;
+    return true;
+  };
+  std::size_t kept = sp.segments.size();
+  while (kept > 1 && at_start(sp.segments[kept - 1])) --kept;
+  if (kept == sp.segments.size()) return;
+  sp.segments.resize(kept);
+  if (sp.continues.size() > kept) sp.continues.resize(kept);
+  CubicBezier& last = sp.segments.back();
+  last.p[2] += sp.start - last.p[3];
+  last.p[3] = sp.start;
+}
 
 class Reader {
  public:
@@ -145,6 +172,9 @@ class Reader {
   double length(pugi::xml_node node, const char* name, Axis axis, const Context& ctx, double fallback) const;
   void draw_shape(pugi::xml_node node, std::string_view tag, const Context& ctx);
   void emit(pugi::xml_node node, std::string_view tag, const std::vector<Subpath>& subpaths, const Context& ctx);
+  // Once the drawing's size is known: a subpath to an isolated point when all of it lies within
+  // `tolerance` (ε_m·d) of one point (paper §4), else to the soup's curves.
+  void add_to_soup(PendingSubpath& sp, double tolerance);
   int source_of(pugi::xml_node node, std::string_view tag);
   void warn_once(const std::string& key, const std::string& message);
 
@@ -169,6 +199,7 @@ class Reader {
   std::unordered_set<std::string> warned_;
 
   std::vector<PendingSubpath> pending_;
+  int arcs_ = 0;  // arcs numbered in the soup so far (SoupCurve::arc)
   FeatureSoup soup_;
 };
 
@@ -706,7 +737,7 @@ void Reader::draw_shape(pugi::xml_node node, std::string_view tag, const Context
   } else if (tag == "line") {
     const Vec2 a(length(node, "x1", Axis::x, ctx, 0), length(node, "y1", Axis::y, ctx, 0));
     const Vec2 b(length(node, "x2", Axis::x, ctx, 0), length(node, "y2", Axis::y, ctx, 0));
-    subpaths.push_back({a, {CubicBezier::line(a, b)}, false});
+    subpaths.push_back({a, {CubicBezier::line(a, b)}, false, {}});
   } else {  // polyline, polygon
     try {
       bool odd = false;
@@ -736,6 +767,8 @@ void Reader::emit(pugi::xml_node node, std::string_view tag, const std::vector<S
   for (const Subpath& sp : subpaths) {
     PendingSubpath out;
     out.start = ctx.ctm.apply(sp.start);
+    out.closed = sp.closed;
+    out.continues = sp.continues;
     out.source = source;
     out.stroke = ctx.stroke;
     out.fill = ctx.fill;
@@ -821,30 +854,38 @@ FeatureSoup Reader::read() {
   if (const std::string problem = drawing_size_problem(extent); !problem.empty()) throw InputError(problem);
   const double tolerance = options_.degenerate_tolerance_rel * extent.diagonal();
   soup_.curves.reserve(curve_count_);
-  for (PendingSubpath& sp : pending_) {
-    Vec2 sum = sp.start;
-    std::size_t n = 1;
-    for (const CubicBezier& c : sp.segments)
-      for (const Vec2& q : c.p) sum += q, ++n;
-    const Vec2 centre = sum / double(n);
-    bool degenerate = (sp.start - centre).norm() <= tolerance;
-    for (const CubicBezier& c : sp.segments)
-      for (const Vec2& q : c.p) degenerate = degenerate && (q - centre).norm() <= tolerance;
-    if (degenerate) {
-      soup_.points.push_back({centre, sp.source});
-      continue;
-    }
-    for (const CubicBezier& c : sp.segments)
-      soup_.curves.push_back({c, sp.source, sp.stroke, sp.fill, sp.left, sp.right});
-    // The edge of the filled shape where the outline leaves it open (not drawn, but filled to).
-    if (options_.close_filled_subpaths && sp.filled && !sp.segments.empty()) {
-      const Vec2 end = sp.segments.back().p[3];
-      if ((end - sp.start).norm() > tolerance)
-        soup_.curves.push_back({CubicBezier::line(end, sp.start), sp.source, Paint{}, sp.fill, sp.left, sp.right});
-    }
-  }
+  for (PendingSubpath& sp : pending_) add_to_soup(sp, tolerance);
   pending_.clear();
   return std::move(soup_);
+}
+
+void Reader::add_to_soup(PendingSubpath& sp, double tolerance) {
+  Vec2 sum = sp.start;
+  std::size_t n = 1;
+  for (const CubicBezier& c : sp.segments)
+    for (const Vec2& q : c.p) sum += q, ++n;
+  const Vec2 centre = sum / double(n);
+  bool degenerate = (sp.start - centre).norm() <= tolerance;
+  for (const CubicBezier& c : sp.segments)
+    for (const Vec2& q : c.p) degenerate = degenerate && (q - centre).norm() <= tolerance;
+  if (degenerate) {
+    soup_.points.push_back({centre, sp.source});
+    return;
+  }
+  close_exactly(sp, tolerance);
+  // The pieces of one arc share its number (SoupCurve::arc); a curve not cut from an arc has none.
+  int arc = -1;
+  for (std::size_t i = 0; i < sp.segments.size(); ++i) {
+    auto continues = [&](std::size_t k) { return k < sp.continues.size() && sp.continues[k]; };
+    if (!continues(i)) arc = continues(i + 1) ? arcs_++ : -1;
+    soup_.curves.push_back({sp.segments[i], sp.source, sp.stroke, sp.fill, sp.left, sp.right, arc});
+  }
+  // The edge of the filled shape where the outline leaves it open (not drawn, but filled to).
+  if (options_.close_filled_subpaths && sp.filled && !sp.segments.empty()) {
+    const Vec2 end = sp.segments.back().p[3];
+    if ((end - sp.start).norm() > tolerance)
+      soup_.curves.push_back({CubicBezier::line(end, sp.start), sp.source, Paint{}, sp.fill, sp.left, sp.right});
+  }
 }
 
 }  // namespace

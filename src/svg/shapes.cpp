@@ -1,6 +1,9 @@
 #include "svg/shapes.hpp"
 
 #include <algorithm>
+#include <numbers>
+
+#include "svg/arc.hpp"
 
 #include "svg/numbers.hpp"
 
@@ -8,15 +11,18 @@ namespace curvemesh::svg {
 
 namespace {
 
-// The quarter of the ellipse centred at c with radii (rx, ry), from angle index k to k + 1
-// (0 = +x, 1 = +y, 2 = -x, 3 = -y: clockwise on screen, where y points down).
-CubicBezier quarter(const Vec2& c, double rx, double ry, int k) {
-  static const Vec2 dirs[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
-  const Vec2 u = dirs[k % 4], v = dirs[(k + 1) % 4];
-  const Vec2 a = c + Vec2(u.x() * rx, u.y() * ry), b = c + Vec2(v.x() * rx, v.y() * ry);
-  return {a, a + kQuarterArcKappa * Vec2(v.x() * rx, v.y() * ry), b + kQuarterArcKappa * Vec2(u.x() * rx, u.y() * ry),
-          b};
+// The quarter q of the ellipse centred at c (its parameter from q·π/2 to (q + 1)·π/2: 0 from +x
+// to +y, 1 to −x, 2 to −y, 3 back to +x; clockwise on screen, where y points down) from `from`
+// to `to`, its ends as the caller puts them: arc_piece_count(π/2) = 9 cubics.
+std::vector<CubicBezier> quarter(const Vec2& c, double rx, double ry, int q, const Vec2& from, const Vec2& to) {
+  constexpr double kHalfPi = std::numbers::pi / 2;
+  return elliptic_arc_cubics({c, rx, ry, 1, 0, q * kHalfPi, (q + 1) * kHalfPi}, from, to);
 }
+
+// A rounded rect's side shorter than this fraction of its width (or height) is the round-off of
+// rx = w/2 (ry = h/2): x + w − rx need not be x + rx in doubles, and a side of that length would
+// be a degenerate curve between two corners that meet.
+constexpr double kSideRoundOff = 1e-12;
 
 }  // namespace
 
@@ -32,17 +38,27 @@ std::vector<Subpath> rect_subpaths(double x, double y, double w, double h, doubl
     for (int i = 0; i < 4; ++i) sp.segments.push_back(CubicBezier::line(c[i], c[(i + 1) % 4]));
     return {sp};
   }
-  // Corner centres, clockwise from the top right; straight sides only where they have length.
+  // SVG 2 §10.2: from (x + rx, y) clockwise, each side (where it has a length) then the corner's
+  // quarter ellipse to the next side's start; the last corner ends exactly at the start.
   const Vec2 centres[4] = {{x + w - rx, y + ry}, {x + w - rx, y + h - ry}, {x + rx, y + h - ry}, {x + rx, y + ry}};
-  sp.start = Vec2(x + rx, y);
+  const Vec2 sides[4][2] = {{{x + rx, y}, {x + w - rx, y}},
+                            {{x + w, y + ry}, {x + w, y + h - ry}},
+                            {{x + w - rx, y + h}, {x + rx, y + h}},
+                            {{x, y + h - ry}, {x, y + ry}}};
+  const bool across = w - 2 * rx > kSideRoundOff * w, down = h - 2 * ry > kSideRoundOff * h;
+  const bool has_side[4] = {across, down, across, down};
+  sp.start = sides[0][0];
   Vec2 current = sp.start;
   for (int i = 0; i < 4; ++i) {
-    const CubicBezier arc = quarter(centres[i], rx, ry, (i + 3) % 4);
-    if (arc.p[0] != current) sp.segments.push_back(CubicBezier::line(current, arc.p[0]));
-    sp.segments.push_back(arc);
-    current = arc.p[3];
+    if (has_side[i]) {
+      sp.segments.push_back(CubicBezier::line(current, sides[i][1]));
+      current = sides[i][1];
+    }
+    const Vec2 next = sides[(i + 1) % 4][0];
+    // Without a side between them, two corners are one arc of the ellipse of radii rx, ry.
+    sp.add_arc(quarter(centres[i], rx, ry, (i + 3) % 4, current, next), !has_side[i]);
+    current = next;
   }
-  if (current != sp.start) sp.segments.push_back(CubicBezier::line(current, sp.start));
   return {sp};
 }
 
@@ -51,9 +67,10 @@ std::vector<Subpath> ellipse_subpaths(double cx, double cy, double rx, double ry
   Subpath sp;
   sp.closed = true;
   const Vec2 c(cx, cy);
-  for (int k = 0; k < 4; ++k) sp.segments.push_back(quarter(c, rx, ry, k));
-  sp.start = sp.segments.front().p[0];
-  sp.segments.back().p[3] = sp.start;  // closed exactly
+  // SVG 2 §10.4: from (cx + rx, cy) through the other three extreme points, each exactly.
+  const Vec2 extremes[4] = {{cx + rx, cy}, {cx, cy + ry}, {cx - rx, cy}, {cx, cy - ry}};
+  for (int q = 0; q < 4; ++q) sp.add_arc(quarter(c, rx, ry, q, extremes[q], extremes[(q + 1) % 4]), q > 0);
+  sp.start = extremes[0];
   return {sp};
 }
 

@@ -7,13 +7,13 @@
 
 namespace curvemesh::svg {
 
-// 4/3·(√2 − 1): the control arm of the usual quarter-circle cubic (the one Illustrator uses,
-// paper §3.1). Its radial error is at most 2.8e-4 of the radius.
-inline constexpr double kQuarterArcKappa = 0.55228474983079339840;
-
+// Arcs (the corners of a rounded rect, ellipses) are cubics within kArcTolerance (svg/arc.hpp) of
+// the conic, nine per quarter, passing exactly through the points where a quarter meets a side or
+// the next quarter.
+//
 // A rectangle with corner radii (already defaulted per §9.2); nothing when width or height ≤ 0.
 std::vector<Subpath> rect_subpaths(double x, double y, double width, double height, double rx, double ry);
-// An ellipse as four quarter cubics starting at (cx + rx, cy); nothing when a radius ≤ 0.
+// An ellipse as four quarters starting at (cx + rx, cy); nothing when a radius ≤ 0.
 std::vector<Subpath> ellipse_subpaths(double cx, double cy, double rx, double ry);
 // A points list; a trailing odd coordinate is dropped and reported through `odd_count`.
 // Throws SyntaxError on a malformed number, and TooManyPieces (path_data.hpp) as soon as the

@@ -4,13 +4,15 @@ independent reader) and certified by tests/tools/msh_check.py: one physical surf
 element named by its id (else TAG#INDEX) plus "background", the --stats "regions" list, the
 region and face of each triangle in the .vtu, areas that add up to the box's, domains that keep
 only their triangles and the nodes those use, the --svg picture filled with the elements'
-colours and drawn with line widths in the drawing's units, and bad input.
+colours and drawn with line widths in the drawing's units, the area of a filled <circle> (πr² to
+1e-8, by --stats and by quadrature of the curved triangles), and bad input.
 
 usage: regions_test.py CURVEMESH_BINARY EXAMPLES_DIR
 """
 import contextlib
 import io
 import json
+import math
 import os
 import re
 import subprocess
@@ -147,6 +149,50 @@ r, out, stats = mesh("box", hole, "--regions")
 check("square with a hole: the white circle is painted over the square",
       [g["name"] for g in stats["regions"]] == ["background", "rect#1", "circle#2"]
       and stats["regions"][2]["fill"] == "#ffffff", stats.get("regions"))
+
+# --- the area of a filled circle -------------------------------------------------------------
+# The reader's cubics lie within 1e-9·r of the circle and the curved triangles follow them, so the
+# mesh of a <circle> is a mesh of the disk: its area is π r² to about 1e-9, as --stats says and as
+# Gauss quadrature of det J over each 10-node triangle (Gmsh's node order) measures independently.
+def p3_area(m):
+    corners = [(0, 0), (1, 0), (0, 1)]
+    ref = list(corners)
+    for a, b in ((0, 1), (1, 2), (2, 0)):
+        for s in (1 / 3, 2 / 3):
+            ref.append(tuple((1 - s) * corners[a][i] + s * corners[b][i] for i in range(2)))
+    ref.append((1 / 3, 1 / 3))
+    powers = [(i, j) for i in range(4) for j in range(4 - i)]
+    coef = np.linalg.inv(np.array([[x ** i * y ** j for i, j in powers] for x, y in ref]))
+    # det J has degree 4: a collapsed 5×5 Gauss–Legendre rule on the triangle is exact for it.
+    g, w = np.polynomial.legendre.leggauss(5)
+    g, w = (g + 1) / 2, w / 2
+    quad = [(u * (1 - v), v, wu * wv * (1 - v)) for u, wu in zip(g, w) for v, wv in zip(g, w)]
+    total = 0.0
+    for block in m.cells:
+        if block.type != "triangle10":
+            continue
+        nodes = m.points[np.asarray(block.data)][:, :, :2]  # triangles × 10 × 2
+        for x, y, weight in quad:
+            dx = np.array([i * x ** (i - 1) * y ** j if i else 0.0 for i, j in powers]) @ coef
+            dy = np.array([j * x ** i * y ** (j - 1) if j else 0.0 for i, j in powers]) @ coef
+            jx, jy = nodes.transpose(0, 2, 1) @ dx, nodes.transpose(0, 2, 1) @ dy
+            total += weight * np.sum(jx[:, 0] * jy[:, 1] - jx[:, 1] * jy[:, 0])
+    return total
+
+
+disk = write("disk.svg", '<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">'
+                         '<circle id="disk" cx="50" cy="50" r="40" fill="#336699"/></svg>')
+r, out, stats = mesh("disk", disk, "--domain", "filled", "--regions")
+check("a filled circle: exit 0", r.returncode == 0, r.stderr)
+if r.returncode == 0:
+    want = math.pi * 40 ** 2
+    said = [g["area"] for g in stats.get("regions", []) if g["name"] == "disk"]
+    check("a filled circle: its --stats area is pi r^2 to 1e-8", len(said) == 1 and abs(said[0] / want - 1) <= 1e-8,
+          (said, want))
+    measured = p3_area(read(out + ".msh"))
+    check("a filled circle: the area of its curved triangles is pi r^2 to 1e-8", abs(measured / want - 1) <= 1e-8,
+          (measured, want, measured / want - 1))
+    certify("a filled circle", out + ".msh")
 
 # --- fill semantics through the command line ------------------------------------------------------
 doc = write("rules.svg", """<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 30 12">

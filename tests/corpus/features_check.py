@@ -5,7 +5,8 @@ trusted):
 
   1. primary polylines never cross: no two primary edges intersect except at a shared endpoint;
   2. the μ rule (docs/method.md, "Feature processing"): two primary edges are at least μ apart, unless
-     they belong to one input curve and are joined along it by at most π/2·μ of polyline without
+     they belong to one input curve (or to the cubics of one arc, the curves' `arc`) and are joined
+     along it by at most π/2·μ of polyline (around a closed arc, a circle, either way) without
      folding back (adjacent edges meet at least at the junction angle, others point the same
      way), or share an endpoint and meet there at an angle of at least the junction angle;
   3. every secondary segment lies within ε of the input curve it came from (5 points per segment
@@ -63,16 +64,26 @@ def check_file(args_path):
     tol = 1e-12 * par["d"]
 
     # Primary edges with their section and position in it.
-    # The sections of one input curve follow each other in the JSON and share endpoints: chain
-    # them, so that the "joined by π/2·μ of polyline" rule measures along the whole curve.
+    # The sections of one input curve follow each other in the JSON and share endpoints, and so do
+    # those of the cubics one arc was cut into: chain them, so that the "joined by π/2·μ of
+    # polyline" rule measures along the whole curve. A chain of an arc's cubics that ends where it
+    # starts (a circle) is closed.
+    arc_of = [c.get("arc", -1) for c in data["curves"]]
     a_list, b_list, sec, along = [], [], [], []
-    chain, chain_end, chain_len = -1, None, 0.0
+    chain, chain_end, chain_len, chain_arc = -1, None, 0.0, -1
+    totals, closed, chain_start, chain_first = [], [], None, -1
     for s in data["sections"]:
         poly = s["polyline"]
-        if chain_end is None or s["curve"] != chain_curve or poly[0] != chain_end:
+        arc = arc_of[s["curve"]]
+        same_curve = chain_end is not None and s["curve"] == chain_curve and poly[0] == chain_end
+        same_arc = chain_end is not None and arc >= 0 and arc == chain_arc and poly[0] == chain_end
+        if not (same_curve or same_arc):
             chain += 1
-            chain_len = 0.0
-        chain_curve, chain_end = s["curve"], poly[-1]
+            chain_len, chain_start, chain_first = 0.0, poly[0], s["curve"]
+            totals.append(0.0)
+            closed.append(False)
+        chain_curve, chain_end, chain_arc = s["curve"], poly[-1], arc
+        closed[chain] = arc >= 0 and s["curve"] != chain_first and poly[-1] == chain_start
         for k in range(len(poly) - 1):
             length = float(np.hypot(poly[k + 1][0] - poly[k][0], poly[k + 1][1] - poly[k][1]))
             if s["kind"] == "primary":
@@ -81,6 +92,7 @@ def check_file(args_path):
                 sec.append(chain)
                 along.append(chain_len)
             chain_len += length
+        totals[chain] = chain_len
     n = len(a_list)
     if n > max_edges:
         return {"file": rel, "status": "skipped", "detail": f"{n} primary edges"}
@@ -88,16 +100,22 @@ def check_file(args_path):
     if n:
         A, B = np.array(a_list, float), np.array(b_list, float)
         sec, along = np.array(sec), np.array(along)
+        chain_total, chain_closed = np.array(totals), np.array(closed, bool)
         edge_len = np.linalg.norm(B - A, axis=1)
         block = max(1, 4_000_000 // max(n, 1))
         for start in range(0, n, block):
             i = np.arange(start, min(n, start + block))
             dist, crossing = segment_distances(A[i][:, None], B[i][:, None], A[None], B[None])
             same = i[:, None] == np.arange(n)[None]
-            # Joined along one section by at most π/2·μ of polyline (consecutive edges included).
+            # Joined along one section by at most π/2·μ of polyline (consecutive edges included);
+            # around a closed chain, across its start too.
             first_end = np.minimum(along[i][:, None] + edge_len[i][:, None], along[None] + edge_len[None])
             second_start = np.maximum(along[i][:, None], along[None])
             gap = second_start - first_end
+            second_end = np.maximum(along[i][:, None] + edge_len[i][:, None], along[None] + edge_len[None])
+            first_start = np.minimum(along[i][:, None], along[None])
+            across = chain_total[sec][None] - second_end + first_start
+            gap = np.where(chain_closed[sec][None], np.minimum(gap, across), gap)
             consecutive = (sec[i][:, None] == sec[None]) & (gap <= 0.5 * np.pi * mu + tol)
             # ... unless the curve folds back between them: adjacent edges meeting at less than the
             # junction angle, or edges pointing in opposite directions.

@@ -1,6 +1,6 @@
 """Mesh.to_meshio(): the mesh meshio reads from our own .msh file, node order included (its groups
-by kind: the file's further groups are the file's alone); meshio
-writes it (Gmsh 4.1 and 2.2; VTU when linear or quadratic) and reads back the same geometry."""
+by kind: the file's further groups are the file's alone); meshio writes it (Gmsh 4.1 and 2.2; VTU
+when linear or quadratic) and reads back the same geometry."""
 import numpy as np
 import pytest
 

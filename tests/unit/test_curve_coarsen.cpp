@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <string>
 
 #include "curve/curve.hpp"
@@ -14,16 +15,30 @@
 namespace curvemesh {
 namespace {
 
+// An ellipse as a path of four quarter cubics (control arm 4/3·(√2 − 1)): four curves. (A
+// <circle> is 36 cubics within 1e-9 of it, and coarsening along a curve keeps its ends.)
+std::string ellipse_path(double cx, double cy, double rx, double ry) {
+  const double k = 0.5522847498307936;
+  const double p[13][2] = {{rx, 0},   {rx, k * ry},   {k * rx, ry},   {0, ry},   {-k * rx, ry},
+                           {-rx, k * ry}, {-rx, 0},   {-rx, -k * ry}, {-k * rx, -ry}, {0, -ry},
+                           {k * rx, -ry}, {rx, -k * ry}, {rx, 0}};
+  std::ostringstream d;
+  d.precision(17);
+  d << "<path d=\"M " << cx + p[0][0] << " " << cy + p[0][1];
+  for (int i = 1; i < 13; ++i) d << (i % 3 == 1 ? " C " : " ") << cx + p[i][0] << " " << cy + p[i][1];
+  d << " Z\" fill=\"none\" stroke=\"black\"/>";
+  return d.str();
+}
+
 // Circles of several radii, an open wave and an ellipse in a 400 x 300 drawing: curves bending at
 // every scale, whose primary edges the linear stage keeps at α of turning each.
 std::string curves() {
   std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 400 300\">";
   for (const auto& [cx, cy, r] :
        {std::array<double, 3>{100, 100, 60}, {300, 90, 30}, {300, 200, 12}, {90, 240, 25}})
-    s += "<circle cx=\"" + std::to_string(cx) + "\" cy=\"" + std::to_string(cy) + "\" r=\"" +
-         std::to_string(r) + "\" fill=\"none\" stroke=\"black\"/>";
+    s += ellipse_path(cx, cy, r, r);
   s += "<path d=\"M 160 250 C 190 180 220 320 250 250 S 310 180 340 250\" fill=\"none\" stroke=\"black\"/>";
-  s += "<ellipse cx=\"200\" cy=\"150\" rx=\"40\" ry=\"15\" fill=\"none\" stroke=\"black\"/>";
+  s += ellipse_path(200, 150, 40, 15);
   return s + "</svg>";
 }
 

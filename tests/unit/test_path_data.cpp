@@ -180,13 +180,21 @@ TEST(PathData, PackedNumberForms) {
 TEST(PathData, ArcsWithPackedFlags) {
   // "a1 1 0 011 1": rx 1, ry 1, rotation 0, large 0, sweep 1, to (+1, +1).
   const auto s = segments("M0 0 a1 1 0 011 1");
-  ASSERT_EQ(s.size(), 1u);  // a quarter circle
-  EXPECT_EQ(s[0].p[3], Vec2(1, 1));
+  ASSERT_EQ(s.size(), 9u);  // a quarter circle, in arc_piece_count(π/2) pieces
+  EXPECT_EQ(s.back().p[3], Vec2(1, 1));
   // The same arc with separators.
   const auto t = segments("M0 0 a 1 1 0 0 1 1 1");
-  for (int i = 0; i < 4; ++i) EXPECT_EQ(s[0].p[i], t[0].p[i]);
+  ASSERT_EQ(t.size(), s.size());
+  for (std::size_t k = 0; k < s.size(); ++k)
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(s[k].p[i], t[k].p[i]);
   // sweep=1 (clockwise on screen) from (0,0) to (1,1) with r=1: the centre is (0,1).
-  EXPECT_NEAR((s[0].eval(0.5) - Vec2(0, 1)).norm(), 1.0, 3e-4);
+  for (const CubicBezier& c : s) EXPECT_NEAR((c.eval(0.5) - Vec2(0, 1)).norm(), 1.0, kArcTolerance);
+  // The pieces after the first continue it, as one arc.
+  const std::vector<Subpath> sub = parse_path_data("M0 0 L 0 -1 M0 0 a1 1 0 011 1 l 1 0");
+  ASSERT_EQ(sub.size(), 2u);
+  ASSERT_EQ(sub[1].segments.size(), 10u);
+  for (std::size_t k = 0; k < 10; ++k) EXPECT_EQ(sub[1].continues_at(k), k >= 1 && k < 9) << k;
+  EXPECT_FALSE(sub[0].continues_at(0));
 }
 
 TEST(PathData, Errors) {

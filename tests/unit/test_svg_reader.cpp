@@ -80,19 +80,24 @@ TEST(Reader, BasicShapes) {
       "<polyline points='0,0 1,1 2,0'/>"
       "<polygon points='0 0 1 1 2 0'/>"
       "<rect width='0' height='5'/><circle r='0'/>"));  // zero sizes draw nothing
-  // rect 4 + rounded rect (4 sides + 4 corners) 8 + circle 4 + ellipse 4 + line 1 + polyline 2 + polygon 3
-  EXPECT_EQ(s.curves.size(), 4u + 8u + 4u + 4u + 1u + 2u + 3u);
+  // rect 4 + rounded rect (4 sides + 4 corners of 9 pieces) 40 + circle 36 + ellipse 36 + line 1
+  // + polyline 2 + polygon 3
+  EXPECT_EQ(s.curves.size(), 4u + 40u + 36u + 36u + 1u + 2u + 3u);
   ASSERT_GE(s.sources.size(), 1u);
   EXPECT_EQ(s.sources[s.curves[0].source].id, "r");
   EXPECT_EQ(s.sources[s.curves[0].source].tag, "rect");
-  // The circle passes through its four extreme points, starting at (cx + r, cy).
-  const auto& c = s.curves[12].bezier;
-  expect_point(c.p[0], {7, 5});
-  expect_point(c.p[3], {5, 7});
-  // Every point of the circle's cubics lies within 2.8e-4·r of the circle.
-  for (int k = 12; k < 16; ++k)
-    for (double t = 0; t <= 1; t += 0.01)
-      EXPECT_NEAR((s.curves[k].bezier.eval(t) - Vec2(5, 5)).norm(), 2.0, 2.8e-4 * 2.0);
+  // The circle passes through its four extreme points, starting at (cx + r, cy), and closes.
+  const int circle = 44;
+  EXPECT_EQ(s.sources[s.curves[circle].source].tag, "circle");
+  EXPECT_EQ(s.curves[circle].bezier.p[0], Vec2(7, 5));
+  EXPECT_EQ(s.curves[circle + 9].bezier.p[0], Vec2(5, 7));
+  EXPECT_EQ(s.curves[circle + 18].bezier.p[0], Vec2(3, 5));
+  EXPECT_EQ(s.curves[circle + 27].bezier.p[0], Vec2(5, 3));
+  EXPECT_EQ(s.curves[circle + 35].bezier.p[3], Vec2(7, 5));
+  // Every point of the circle's cubics lies within 1e-9·r of the circle (test_arc proves it).
+  for (int k = circle; k < circle + 36; ++k)
+    for (int i = 0; i <= 100; ++i)
+      EXPECT_NEAR((s.curves[k].bezier.eval(i / 100.0) - Vec2(5, 5)).norm(), 2.0, 1e-9 * 2.0);
 }
 
 TEST(Reader, RoundedRectRadiiDefaultAndClamp) {
@@ -243,6 +248,62 @@ TEST(Reader, DegeneratePathsBecomePoints) {
   expect_point(s.points[0].p, {5, 5});
   expect_point(s.points[1].p, {1, 1}, 1e-12);
   EXPECT_EQ(s.sources[s.points[0].source].tag, "path");
+}
+
+TEST(Reader, ClosedPathsComingBackToTheirStartWithinRoundOffCloseExactly) {
+  // Relative path data that does not sum back to its start (50.1 + … = 50.10000000000001): Z
+  // would add a closing line of length 7e-15 — a degenerate curve, the last cubic ending beside
+  // the first. The last cubic ends exactly at the start instead, its end tangent kept.
+  const std::string d =
+      "M 50.1 0.3 c 0.9017403 10.4244198 -6.222571 24.7737399 -16.120289 31.2732593 "
+      "c -9.897718 6.4995194 -28.6473604 10.0435088 -43.266019 7.7238572 "
+      "c -14.6186586 -2.3196516 -39.9662093 -12.2496892 -44.4459324 -21.6417669 "
+      "c -4.4797231 -9.3920777 10.7398515 -25.3186215 17.567594 -34.7106992 "
+      "c 6.8277425 -9.3920777 12.6098751 -19.3221153 23.398861 -21.6417669 "
+      "c 10.7889859 -2.3196516 30.8574237 1.2243378 41.3350546 7.7238572 "
+      "c 10.4776309 6.4995194 20.6289905 20.8488395 21.5307308 31.2732593 ";
+  const FeatureSoup closed = read(doc("<path d='" + d + "z'/>"));
+  ASSERT_EQ(closed.curves.size(), 7u);
+  EXPECT_TRUE(closed.points.empty());
+  EXPECT_EQ(closed.curves.back().bezier.p[3], Vec2(50.1, 0.3));
+  const FeatureSoup open = read(doc("<path d='" + d + "'/>"));
+  ASSERT_EQ(open.curves.size(), 7u);
+  const auto& moved = closed.curves.back().bezier;
+  const auto& as_drawn = open.curves.back().bezier;
+  EXPECT_NE(as_drawn.p[3], Vec2(50.1, 0.3));  // without Z nothing is closed
+  EXPECT_EQ(moved.p[3] - moved.p[2], as_drawn.p[3] - as_drawn.p[2]);
+  EXPECT_EQ(moved.p[1], as_drawn.p[1]);
+  // A gap of more than ε_m is the drawing's: Z closes it with a line, as before.
+  const FeatureSoup gap = read(doc("<path d='M 0 0 C 10 0 10 10 0 10 C -10 10 -10 0 0 0.001 Z'/>"));
+  ASSERT_EQ(gap.curves.size(), 3u);
+  EXPECT_EQ(gap.curves[1].bezier.p[3], Vec2(0, 0.001));
+}
+
+TEST(Reader, PiecesOfOneArcShareItsNumber) {
+  const FeatureSoup s = read(doc(
+      "<defs><circle id='c' r='2'/></defs>"
+      "<rect width='10' height='4' rx='1'/>"               // four corners, four sides
+      "<use href='#c'/><use href='#c' x='10'/>"            // one circle each
+      "<path d='M 0 0 L 1 0 A 1 1 0 0 1 3 0 A 1 1 0 0 1 1 0 Q 0 3 0 0'/>"));  // two half circles
+  ASSERT_EQ(s.curves.size(), 40u + 72u + 1u + 17u + 17u + 1u);
+  std::vector<int> arcs;
+  for (const SoupCurve& c : s.curves) arcs.push_back(c.arc);
+  std::vector<int> want;
+  for (int corner = 0; corner < 4; ++corner) {
+    want.push_back(-1);                        // the side before it
+    want.insert(want.end(), 9, corner);        // its quarter
+  }
+  want.insert(want.end(), 36, 4);              // the first circle
+  want.insert(want.end(), 36, 5);              // the second
+  want.push_back(-1);                          // the line
+  want.insert(want.end(), 17, 6);              // each arc command: arc_piece_count(π) = 17 pieces
+  want.insert(want.end(), 17, 7);
+  want.push_back(-1);                          // the quadratic
+  EXPECT_EQ(arcs, want);
+  // A rounded rect without sides is one ellipse.
+  const FeatureSoup pill = read(doc("<rect width='10' height='4' rx='5' ry='2'/>"));
+  ASSERT_EQ(pill.curves.size(), 36u);
+  for (const SoupCurve& c : pill.curves) EXPECT_EQ(c.arc, 0);
 }
 
 TEST(Reader, IllustratorEntities) {
