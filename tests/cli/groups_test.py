@@ -107,8 +107,9 @@ def edge(line):
 
 
 # --- each drawn element's group, a shared side in both, the border -------------------------------
-for order in (["--linear"], []):
-    kind = "linear" if order else "curved"
+# The order's flag and its name in the checks.
+ORDERS = {"linear": ["--linear"], "curved": [], "quadratic": ["--order", "2"]}
+for kind, order in ORDERS.items():
     for domain in ("box", "filled"):
         name = f"shared-{kind}-{domain}"
         path, stats = mesh(name, shared_svg, "--regions", "--domain", domain, *order)
@@ -153,9 +154,9 @@ for order in (["--linear"], []):
 # --- an example without ids, both versions: disjoint ids, contiguous node tags ---------------------
 overlapping = os.path.join(examples, "overlapping-shapes.svg")
 for version in ("4.1", "2.2"):
-    for order in (["--linear"], []):
+    for kind, order in ORDERS.items():
         for domain in ("box", "filled", "evenodd"):
-            name = f"overlapping-{version}-{'linear' if order else 'curved'}-{domain}"
+            name = f"overlapping-{version}-{kind}-{domain}"
             path, stats = mesh(name, overlapping, "--regions", "--domain", domain, "--msh-version", version, *order)
             g = Groups(path)
             check(f"{name}: node tags are 1..N without a gap", g.node_tags == list(range(1, len(g.node_tags) + 1)),
@@ -202,8 +203,8 @@ except Exception as e:  # noqa: BLE001 (dolfinx is optional: a missing or broken
     print(f"groups_test: dolfinx not checked: {e!r}")
     gmshio = None
 if gmshio is not None:
-    for order in (["--linear"], []):
-        name = f"dolfinx-{'linear' if order else 'curved'}"
+    for kind, order in ORDERS.items():
+        name = f"dolfinx-{kind}"
         path, stats = mesh(name, overlapping, "--regions", "--domain", "filled", *order)
         gmsh.initialize()
         gmsh.option.setNumber("General.Terminal", 0)
