@@ -171,4 +171,36 @@ Search certify(const Coefficients<D, T>& top, const JacobianCheckOptions& option
   return s;
 }
 
+// The double-precision certificate of an element of degree-D Jacobian determinant, given by its
+// N nodes: `bernstein` gives the determinant's Bernstein coefficients of a node array, `det` its
+// value at (u, v). Relative to node 0: the subtraction's error is relative to the difference, i.e.
+// to the element's size, where absolute coordinates would bring errors relative to the position.
+template <int D, std::size_t N, class Bernstein, class Det>
+JacobianCertificate certificate(const std::array<Vec2, N>& nodes, Bernstein bernstein, Det det,
+                                const JacobianCheckOptions& options) {
+  std::array<PointT<ErrorBounded>, N> local;
+  std::array<PointT<double>, N> local_values;
+  for (std::size_t i = 0; i < N; ++i)
+    for (int c = 0; c < 2; ++c) {
+      local[i][c] = ErrorBounded(nodes[i][c], 0) - ErrorBounded(nodes[0][c], 0);
+      local_values[i][c] = local[i][c].value;
+    }
+  const auto top = bernstein(local);
+  JacobianCertificate out;
+  const auto [lo, hi] = std::minmax_element(top.begin(), top.end(),
+                                            [](const auto& a, const auto& b) { return a.value < b.value; });
+  out.min_coefficient = lo->value;
+  out.max_coefficient = hi->value;
+  const Search s = certify<D>(top, options);
+  out.verdict = s.verdict;
+  out.subtriangles = s.subtriangles;
+  // min det J estimate: the degree-4 lattice and every sub-triangle corner visited.
+  out.min_value = s.min_corner;
+  for (int k = 0; k <= 4; ++k)
+    for (int j = 0; j + k <= 4; ++j) out.min_value = std::min(out.min_value, det(local_values, j / 4.0, k / 4.0));
+  out.scaled_jacobian = out.max_coefficient > 0 ? out.min_value / out.max_coefficient
+                                                : -std::numeric_limits<double>::infinity();
+  return out;
+}
+
 }  // namespace curvemesh::geometry::detail

@@ -102,31 +102,9 @@ JacobianVerdict certify_jacobian_exact(const P2Nodes& nodes, const JacobianCheck
 }
 
 JacobianCertificate certify_jacobian(const P2Nodes& nodes, const JacobianCheckOptions& options) {
-  // Relative to node 0, as for P3: the errors scale with the element's size, not its position.
-  using detail::ErrorBounded;
-  P2NodesT<ErrorBounded> local;
-  P2NodesT<double> local_values;
-  for (int i = 0; i < 6; ++i)
-    for (int c = 0; c < 2; ++c) {
-      local[i][c] = ErrorBounded(nodes[i][c], 0) - ErrorBounded(nodes[0][c], 0);
-      local_values[i][c] = local[i][c].value;
-    }
-  const auto top = p2_jacobian_det_bernstein(local);
-  JacobianCertificate out;
-  const auto [lo, hi] = std::minmax_element(top.begin(), top.end(),
-                                            [](const auto& a, const auto& b) { return a.value < b.value; });
-  out.min_coefficient = lo->value;
-  out.max_coefficient = hi->value;
-  const detail::Search s = detail::certify<2>(top, options);
-  out.verdict = s.verdict;
-  out.subtriangles = s.subtriangles;
-  out.min_value = s.min_corner;
-  for (int k = 0; k <= 4; ++k)
-    for (int j = 0; j + k <= 4; ++j)
-      out.min_value = std::min(out.min_value, p2_jacobian_det(local_values, j / 4.0, k / 4.0));
-  out.scaled_jacobian = out.max_coefficient > 0 ? out.min_value / out.max_coefficient
-                                                : -std::numeric_limits<double>::infinity();
-  return out;
+  return detail::certificate<2>(
+      nodes, [](const auto& n) { return p2_jacobian_det_bernstein(n); },
+      [](const auto& n, double u, double v) { return p2_jacobian_det(n, u, v); }, options);
 }
 
 }  // namespace curvemesh::geometry

@@ -118,33 +118,9 @@ JacobianVerdict certify_jacobian_exact(const P3Nodes& nodes, const JacobianCheck
 }
 
 JacobianCertificate certify_jacobian(const P3Nodes& nodes, const JacobianCheckOptions& options) {
-  // Relative to node 0: the subtraction's error is relative to the difference, i.e. to the
-  // element's size, where absolute coordinates would bring errors relative to the position.
-  using detail::ErrorBounded;
-  P3NodesT<ErrorBounded> local;
-  P3NodesT<double> local_values;
-  for (int i = 0; i < 10; ++i)
-    for (int c = 0; c < 2; ++c) {
-      local[i][c] = ErrorBounded(nodes[i][c], 0) - ErrorBounded(nodes[0][c], 0);
-      local_values[i][c] = local[i][c].value;
-    }
-  const auto top = p3_jacobian_det_bernstein(local);
-  JacobianCertificate out;
-  const auto [lo, hi] = std::minmax_element(top.begin(), top.end(),
-                                            [](const auto& a, const auto& b) { return a.value < b.value; });
-  out.min_coefficient = lo->value;
-  out.max_coefficient = hi->value;
-  const detail::Search s = detail::certify<4>(top, options);
-  out.verdict = s.verdict;
-  out.subtriangles = s.subtriangles;
-  // min det J estimate: the degree-4 lattice and every sub-triangle corner visited.
-  out.min_value = s.min_corner;
-  for (int k = 0; k <= 4; ++k)
-    for (int j = 0; j + k <= 4; ++j)
-      out.min_value = std::min(out.min_value, p3_jacobian_det(local_values, j / 4.0, k / 4.0));
-  out.scaled_jacobian = out.max_coefficient > 0 ? out.min_value / out.max_coefficient
-                                                : -std::numeric_limits<double>::infinity();
-  return out;
+  return detail::certificate<4>(
+      nodes, [](const auto& n) { return p3_jacobian_det_bernstein(n); },
+      [](const auto& n, double u, double v) { return p3_jacobian_det(n, u, v); }, options);
 }
 
 }  // namespace curvemesh::geometry
