@@ -150,6 +150,30 @@ io::HighOrderMesh submesh(const io::HighOrderMesh& mesh, const std::vector<char>
   return out;
 }
 
+namespace {
+
+// The point and the derivative at s of the polynomial curve through p[0..n] at s = 0, 1/n, ..., 1
+// (an edge of a mesh of order n): its Lagrange basis on the equispaced nodes, differentiated.
+std::pair<geometry::Vec2, geometry::Vec2> equispaced_curve(const std::vector<geometry::Vec2>& p, double s) {
+  const int order = static_cast<int>(p.size()) - 1;
+  geometry::Vec2 x = geometry::Vec2::Zero(), dx = geometry::Vec2::Zero();
+  for (int i = 0; i <= order; ++i) {
+    const double si = double(i) / order;
+    double value = 1, slope = 0;
+    for (int j = 0; j <= order; ++j) {
+      if (j == i) continue;
+      const double sj = double(j) / order, denom = si - sj;
+      slope = slope * (s - sj) / denom + value / denom;
+      value *= (s - sj) / denom;
+    }
+    x += value * p[i];
+    dx += slope * p[i];
+  }
+  return {x, dx};
+}
+
+}  // namespace
+
 double line_length(const io::HighOrderMesh& mesh, int l) {
   const auto line = mesh.line(l);
   const int order = mesh.order;
@@ -165,22 +189,7 @@ double line_length(const io::HighOrderMesh& mesh, int l) {
   p[order] = mesh.nodes[line[1]];
   for (int k = 1; k < order; ++k) p[k] = mesh.nodes[line[1 + k]];
   double length = 0;
-  for (int q = 0; q < 5; ++q) {
-    const double s = kPoint[q];
-    geometry::Vec2 dx = geometry::Vec2::Zero();
-    for (int i = 0; i <= order; ++i) {
-      const double si = double(i) / order;
-      double value = 1, slope = 0;
-      for (int j = 0; j <= order; ++j) {
-        if (j == i) continue;
-        const double sj = double(j) / order, denom = si - sj;
-        slope = slope * (s - sj) / denom + value / denom;
-        value *= (s - sj) / denom;
-      }
-      dx += slope * p[i];
-    }
-    length += kWeight[q] * dx.norm();
-  }
+  for (int q = 0; q < 5; ++q) length += kWeight[q] * equispaced_curve(p, kPoint[q]).second.norm();
   return length;
 }
 
@@ -199,21 +208,7 @@ double triangle_area(const io::HighOrderMesh& mesh, int t) {
     p[order] = mesh.nodes[tri[(e + 1) % 3]];
     for (int k = 1; k < order; ++k) p[k] = mesh.nodes[tri[3 + (order - 1) * e + (k - 1)]];
     for (int q = 0; q < 3; ++q) {
-      const double s = kPoint[q];
-      // Lagrange basis on the equispaced nodes and its derivative.
-      geometry::Vec2 x = geometry::Vec2::Zero(), dx = geometry::Vec2::Zero();
-      for (int i = 0; i <= order; ++i) {
-        const double si = double(i) / order;
-        double value = 1, slope = 0;
-        for (int j = 0; j <= order; ++j) {
-          if (j == i) continue;
-          const double sj = double(j) / order, denom = si - sj;
-          slope = slope * (s - sj) / denom + value / denom;
-          value *= (s - sj) / denom;
-        }
-        x += value * p[i];
-        dx += slope * p[i];
-      }
+      const auto [x, dx] = equispaced_curve(p, kPoint[q]);
       twice += kWeight[q] * geometry::cross(x, dx);
     }
   }
