@@ -63,6 +63,11 @@ void summarize(const Written& w, const pipeline::Result& r, double seconds) {
   std::cout << line;
 }
 
+// The HDF5 file beside --xdmf's, or nothing.
+std::string xdmf_data(const MeshArgs& args) {
+  return args.output_xdmf.empty() ? std::string() : io::xdmf_data_path(args.output_xdmf);
+}
+
 // The mesh, its drawing, VTU, XDMF and statistics, written together or not at all.
 int write_mesh(const MeshArgs& args, pipeline::Result& r, Written& written) {
   return write_together([&](base::OutputFiles& out) {
@@ -78,7 +83,7 @@ int write_mesh(const MeshArgs& args, pipeline::Result& r, Written& written) {
     };
     if (!args.output_vtu.empty()) also(args.output_vtu, io::vtu_string(mesh, pipeline::cell_data(r)));
     if (!args.output_xdmf.empty()) {
-      const std::string data = io::xdmf_data_path(args.output_xdmf);
+      const std::string data = xdmf_data(args);
       io::XdmfFiles xdmf = io::xdmf_files(mesh, std::filesystem::path(data).filename().string());
       also(args.output_xdmf, xdmf.xml);
       also(data, xdmf.data);
@@ -87,11 +92,6 @@ int write_mesh(const MeshArgs& args, pipeline::Result& r, Written& written) {
     r.stats["seconds"]["write"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
     if (!args.output_stats.empty()) also(args.output_stats, pipeline::stats_text(r));
   });
-}
-
-// The HDF5 file beside --xdmf's, or nothing.
-std::string xdmf_data(const MeshArgs& args) {
-  return args.output_xdmf.empty() ? std::string() : io::xdmf_data_path(args.output_xdmf);
 }
 
 // XDMF has no cubic triangle: say so before meshing rather than after.

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
-#include <set>
 #include <span>
 #include <sstream>
 #include <stdexcept>
@@ -110,19 +109,11 @@ int facet_tag(const HighOrderMesh& m, int l) {
   return m.line_physical[std::size_t(l)];
 }
 
-// The lines with their tags, each set of nodes once (its first line's tag).
-std::pair<std::vector<int>, std::vector<int>> distinct_lines(const HighOrderMesh& m) {
-  std::vector<int> nodes, tags;
-  std::set<std::vector<int>> seen;
-  for (int l = 0; l < m.line_count(); ++l) {
-    const std::span<const int> line = m.line(l);
-    std::vector<int> key(line.begin(), line.end());
-    std::sort(key.begin(), key.end());
-    if (!seen.insert(std::move(key)).second) continue;
-    nodes.insert(nodes.end(), line.begin(), line.end());
-    tags.push_back(facet_tag(m, l));
-  }
-  return {std::move(nodes), std::move(tags)};
+// Each line's facet tag.
+std::vector<int> facet_tags(const HighOrderMesh& m) {
+  std::vector<int> tags(std::size_t(m.line_count()));
+  for (int l = 0; l < m.line_count(); ++l) tags[std::size_t(l)] = facet_tag(m, l);
+  return tags;
 }
 
 // A grid of elements with their tags on the nodes of the grid "mesh" (referred to, not repeated),
@@ -183,8 +174,7 @@ XdmfFiles xdmf_files(const HighOrderMesh& m, const std::string& data_name) {
       << "    </Grid>\n";
   tag_grid(xml, h5, data_name, "cell_tags", triangle_type(m.order), m.triangle_size(), m.triangles,
            m.triangle_physical);
-  const auto [line_nodes, line_tags] = distinct_lines(m);
-  tag_grid(xml, h5, data_name, "facet_tags", line_type(m.order), m.line_size(), line_nodes, line_tags);
+  tag_grid(xml, h5, data_name, "facet_tags", line_type(m.order), m.line_size(), m.lines, facet_tags(m));
   xml << "  </Domain>\n"
       << "</Xdmf>\n";
   return {xml.str(), h5.bytes()};

@@ -26,8 +26,8 @@ struct XdmfFiles {
 };
 
 // The two files for `mesh`, the XML naming the data file `data_name`. A facet has one tag in
-// dolfinx: a line in several physical groups carries the first drawn element's it lies on, else
-// its kind's (primary, secondary, boundary); the .msh has them all.
+// dolfinx: a line in several physical groups (line_groups) carries the first drawn element's it
+// lies on, else its kind's (primary, secondary, boundary); the .msh has them all.
 // Throws std::invalid_argument for an order xdmf_order_supported refuses, std::logic_error if the
 // mesh has a structure_error(), std::runtime_error if HDF5 fails.
 XdmfFiles xdmf_files(const HighOrderMesh& mesh, const std::string& data_name);
