@@ -72,9 +72,8 @@ std::string xdmf_data(const MeshArgs& args) {
 int write_mesh(const MeshArgs& args, pipeline::Result& r, Written& written) {
   return write_together([&](base::OutputFiles& out) {
     const auto t = std::chrono::steady_clock::now();
-    // The plain high-order mesh, made once for every file (what pipeline::write_msh, write_vtu
-    // and write_xdmf write).
-    const io::HighOrderMesh mesh = pipeline::high_order_mesh(r);
+    // The plain high-order mesh every file is written from (the run made it once).
+    const io::HighOrderMesh& mesh = pipeline::high_order_mesh(r);
     written = {{args.output_msh}, mesh.order, mesh.triangle_count(), mesh.line_count(), int(mesh.nodes.size())};
     out.add(args.output_msh, io::msh_string(mesh, args.msh));
     const auto also = [&](const std::string& path, const std::string& text) {

@@ -1,6 +1,7 @@
 #include "pipeline/output.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <map>
 #include <stdexcept>
 #include <utility>
@@ -10,6 +11,7 @@
 #include "io/msh_writer.hpp"
 #include "io/output_file.hpp"
 #include "io/vtu_writer.hpp"
+#include "io/xdmf_writer.hpp"
 #include "regions/faces.hpp"
 #include "regions/groups.hpp"
 
@@ -31,7 +33,13 @@ bool is_colour(const svg::Paint& p) {
 
 }  // namespace
 
-io::HighOrderMesh high_order_mesh(const Result& r) {
+const io::HighOrderMesh& high_order_mesh(const Result& r) {
+  require_mesh(r);
+  if (!r.output) throw std::logic_error("the pipeline's result has no output mesh: run() makes it");
+  return *r.output;
+}
+
+io::HighOrderMesh make_output_mesh(const Result& r) {
   require_mesh(r);
   io::HighOrderMesh m = r.painted ? r.painted->mesh : r.curved ? io::curved_mesh(*r.curved) : io::linear_mesh(r.linear);
   regions::add_line_groups(m, line_elements(r, m), r.soup);
@@ -138,6 +146,15 @@ std::vector<int> line_curves(const Result& r, const io::HighOrderMesh& mesh) {
 
 void write_msh(const Result& r, const std::string& path, int version) {
   io::write_msh(high_order_mesh(r), path, io::MshOptions{version});
+}
+
+void write_xdmf(const Result& r, const std::string& path) {
+  const std::string data = io::xdmf_data_path(path);
+  const io::XdmfFiles files = io::xdmf_files(high_order_mesh(r), std::filesystem::path(data).filename().string());
+  io::OutputFiles out;
+  out.add(path, files.xml);
+  out.add(data, files.data);
+  out.commit();
 }
 
 void write_vtu(const Result& r, const std::string& path) {

@@ -14,13 +14,11 @@ namespace curvemesh::pipeline {
 
 // The result's mesh (curved when it was curved, else linear) as plain arrays: the domain's
 // triangles, tagged by region, when the run was asked for them (RunOptions); its lines in the
-// groups of regions/groups.hpp (their kind, "border", each drawn element's). Throws
-// std::logic_error when no stage made a mesh.
-io::HighOrderMesh high_order_mesh(const Result& result);
-
-// The physical groups of `mesh`, by dimension and id, as `--stats` lists them: each one's dim, id,
-// name, and lines and total length (lines) or triangles and area (triangles).
-nlohmann::ordered_json groups_json(const io::HighOrderMesh& mesh);
+// groups of regions/groups.hpp (their kind, "border", each drawn element's). What run() made once
+// (Result::output); throws std::logic_error when no stage made a mesh.
+const io::HighOrderMesh& high_order_mesh(const Result& result);
+// The same, made anew from the result's stages (what run() keeps as Result::output).
+io::HighOrderMesh make_output_mesh(const Result& result);
 
 // Per line of `mesh` (high_order_mesh of the same result, or the mesh it is made from): the drawn
 // elements (indices into result.soup.sources) whose curves it lies on, ascending: the element of
@@ -42,10 +40,13 @@ nlohmann::ordered_json groups_json(const io::HighOrderMesh& mesh);
 // ids, or the domain's nodes that were they); -1 for a side of the box, and for a secondary line when the input had no curves (.poly).
 std::vector<int> line_curves(const Result& result, const io::HighOrderMesh& mesh);
 
-// Gmsh .msh (version 41 or 22), VTK .vtu, and an SVG drawing of the mesh; each written whole or
+// Gmsh .msh (version 41 or 22), VTK .vtu, XDMF, and an SVG drawing of the mesh; each written whole or
 // not at all (io::OutputError).
 void write_msh(const Result& result, const std::string& path, int version = 41);
 void write_vtu(const Result& result, const std::string& path);
+// XDMF and the HDF5 file beside it (io::xdmf_data_path), both or neither; orders 1 and 2
+// (std::invalid_argument for another: io/xdmf_writer.hpp).
+void write_xdmf(const Result& result, const std::string& path);
 void write_svg(const Result& result, const std::string& path);
 // The SVG drawing write_svg writes.
 std::string mesh_svg(const Result& result);

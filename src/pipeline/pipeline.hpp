@@ -6,6 +6,7 @@
 #include <array>
 #include <functional>
 #include <iosfwd>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -14,6 +15,7 @@
 
 #include "curve/curve.hpp"
 #include "features/features.hpp"
+#include "io/high_order_mesh.hpp"
 #include "mesh/constraints.hpp"
 #include "mesh/tri_mesh.hpp"
 #include "optimize/optimize.hpp"
@@ -93,6 +95,9 @@ struct Result {
   // element each shows (fills classified only then), and the mesh that is given out.
   regions::Classification classification;
   std::optional<regions::Painted> painted;
+  // The mesh as it is given out and written (pipeline/output.hpp high_order_mesh), made once at
+  // the end of the run with its physical groups; none when no stage made a mesh.
+  std::shared_ptr<const io::HighOrderMesh> output;
 
   // The linear mesh: the optimized one, or the curved mesh's corners after curve's step 1.
   const mesh::TriMesh& corners() const { return curved ? curved->linear : linear; }
