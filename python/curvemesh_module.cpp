@@ -110,6 +110,12 @@ curvemesh::ParameterOption option_named(const std::string& python) {
   throw py::key_error(python);
 }
 
+// A new int64 array of `ids`.
+py::array_t<std::int64_t> id_column(const std::vector<int>& ids) {
+  const std::vector<std::int64_t> wide(ids.begin(), ids.end());
+  return column(wide.data(), wide.size());
+}
+
 py::dict report_dict(const curvemesh::CheckReport& r) {
   py::dict d;
   d["order"] = r.order;
@@ -202,6 +208,25 @@ PYBIND11_MODULE(_curvemesh, m) {
             return column(self.line_curves().data(), self.line_curves().size());
           },
           "A new int64 array (K,): the input curve each line lies on, -1 for the box's sides.")
+      .def(
+          "triangle_groups", [](const curvemesh::Mesh& self) { return id_column(self.triangle_groups()); },
+          "A new int64 array (M,): each triangle's group id.")
+      .def(
+          "line_groups",
+          [](const curvemesh::Mesh& self) {
+            py::list out;
+            for (const std::vector<int>& ids : self.line_groups()) out.append(id_column(ids));
+            return out;
+          },
+          "A new list of K new int64 arrays: each line's group ids, ascending.")
+      .def(
+          "groups",
+          [](const curvemesh::Mesh& self) {
+            py::list out;
+            for (const curvemesh::Group& g : self.groups()) out.append(py::make_tuple(g.dimension, g.id, g.name));
+            return out;
+          },
+          "A new list of (dimension, id, name) of every group, by dimension then id.")
       .def_property_readonly("stats_json", &curvemesh::Mesh::stats_json, "The statistics as JSON text.")
       .def_property_readonly("warnings", &curvemesh::Mesh::warnings, "What the reader warned about.")
       .def(
@@ -211,7 +236,7 @@ PYBIND11_MODULE(_curvemesh, m) {
             self.write(path, msh_version);
           },
           py::arg("path"), py::arg("msh_version") = 41,
-          "Writes the mesh by the path's extension (.msh, .vtu, .svg); `path` is bytes or str.");
+          "Writes the mesh by the path's extension (.msh, .vtu, .xdmf, .svg); `path` is bytes or str.");
 
   m.def(
       "mesh_file",

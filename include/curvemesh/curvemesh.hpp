@@ -39,6 +39,19 @@ enum class LineTag {
 // "primary", "secondary", "boundary".
 CURVEMESH_API const char* tag_name(LineTag tag);
 
+// A physical group of the mesh: what a solver selects feature lines or triangles by. The .msh
+// file's physical groups, with the same ids and names (`curvemesh mesh --stats` lists them). Ids
+// are unique across both dimensions: 1 primary, 2 secondary, 3 boundary (lines by LineTag), 4
+// domain (the triangles, without Parameters::regions), 5 border (the lines around the meshed
+// domain), then one per drawn element whose curves lines lie on (6 + its index among the drawn
+// elements), then one per region (Parameters::regions), numbered after every drawn element so
+// that a region's id does not depend on Parameters::domain.
+struct Group {
+  int dimension = 0;  // 1: feature lines, 2: triangles
+  int id = 0;         // its physical tag
+  std::string name;   // "primary", ..., "border", a drawn element's id (else TAG#INDEX), a region's
+};
+
 // A cubic Bézier curve by its four control points, (x, y) each, in the drawing's units.
 using Curve = std::array<std::array<double, 2>, 4>;
 
@@ -76,6 +89,16 @@ class CURVEMESH_API Mesh {
   // file, which has no curves).
   const std::vector<std::int64_t>& line_curves() const;
 
+  // Per triangle: the id of its group (dimension 2): its region's with Parameters::regions, else
+  // 4 (domain).
+  const std::vector<int>& triangle_groups() const;
+  // Per line: the ids of every group (dimension 1) it is in, ascending: its LineTag's (1, 2 or
+  // 3), 5 when it lies on the border of the meshed domain, then the group of each drawn element
+  // whose curve it lies on (several where their curves coincide).
+  const std::vector<std::vector<int>>& line_groups() const;
+  // Every group some triangle or line is in, by dimension, then id.
+  const std::vector<Group>& groups() const;
+
   // The statistics `curvemesh mesh --stats` writes (counts, quality, seconds per stage), as JSON;
   // without the seconds spent writing, which the file has.
   const std::string& stats_json() const;
@@ -83,11 +106,13 @@ class CURVEMESH_API Mesh {
   const std::vector<std::string>& warnings() const;
 
   // Writes the mesh by the path's extension: ".msh" (Gmsh, `msh_version` 41 or 22), ".vtu" (VTK
-  // quadratic or Lagrange triangles) or ".svg" (a drawing of the mesh). The file is the very one the command
-  // line writes for the same drawing and parameters, written whole or not at all (never through a
-  // link planted beside it). Throws Error (output) when it cannot be written, the extension (in
-  // any case) is none of these or the Mesh is empty, and Error (invalid_parameters) for another
-  // msh_version or a path that is the drawing the Mesh was read from.
+  // quadratic or Lagrange triangles), ".xdmf" (XDMF for FEniCSx, with its HDF5 data in the ".h5"
+  // file of the same name beside it; orders 1 and 2) or ".svg" (a drawing of the mesh). The file
+  // is the very one the command line writes for the same drawing and parameters, written whole or
+  // not at all (never through a link planted beside it; an XDMF file and its data both or
+  // neither). Throws Error (output) when it cannot be written, the extension (in any case) is none
+  // of these or the Mesh is empty, and Error (invalid_parameters) for another msh_version, XDMF of
+  // a cubic mesh, or a path that is the drawing the Mesh was read from.
   void write(const std::string& path, int msh_version = 41) const;
 
   struct Impl;

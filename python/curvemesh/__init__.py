@@ -71,8 +71,6 @@ def _warned(mesh, name):
 
 
 _LINE_TAG_NAMES = np.array(_curvemesh.LINE_TAG_NAMES)
-# The physical groups of curvemesh's .msh files (and of Mesh.to_meshio()).
-_PHYSICAL = {"primary": 1, "secondary": 2, "boundary": 3, "domain": 4}
 
 
 def _number(name, option, value):
@@ -213,30 +211,64 @@ class Mesh:
     def write(self, path, msh_version="4.1"):
         """Writes the mesh to `path` (str or os.PathLike) by its extension: ".msh" (Gmsh ASCII,
         ``msh_version`` "4.1" or "2.2" as the command line's --msh-version spells it, or 41 or 22),
-        ".vtu" (VTK quadratic or Lagrange triangles) or ".svg" (a drawing of the mesh). The file is
-        byte for byte the one the command line writes for the same drawing and options, written
-        whole or not at all. Raises OSError when it cannot be
-        written or the extension is none of these, ValueError for a path with a NUL or one that is
-        the drawing the mesh was read from."""
+        ".vtu" (VTK quadratic or Lagrange triangles), ".xdmf" (XDMF for FEniCSx, its HDF5 data in
+        the ".h5" file of the same name beside it; orders 1 and 2) or ".svg" (a drawing of the
+        mesh). The file is byte for byte the one the command line writes for the same drawing and
+        options, written whole or not at all (an XDMF file and its data both or neither). Raises
+        OSError when it cannot be written or the extension is none of these, ValueError for a path
+        with a NUL, XDMF of a cubic mesh, or a path that is the drawing the mesh was read from."""
         version = _MSH_VERSIONS.get(msh_version) if isinstance(msh_version, (str, int)) else None
         if version is None or isinstance(msh_version, (bool, np.bool_)):
             raise ValueError(f'msh_version must be "4.1" or "2.2" (41 or 22), not {msh_version!r}')
         self._mesh.write(_path(path), version)
 
+    @property
+    def triangle_groups(self):
+        """Each triangle's group id (a key of ``groups``): int64 array (M,), its region's with
+        ``regions=True``, else 4 (domain)."""
+        return self._array("triangle_groups", self._mesh.triangle_groups)
+
+    @property
+    def line_groups(self):
+        """The ids of every group each feature line is in (keys of ``groups``): a tuple of K int64
+        arrays, each ascending: its kind's (1 primary, 2 secondary, 3 boundary), 5 when it lies on
+        the border of the meshed domain, then the group of each drawn element whose curve it lies
+        on (several where their curves coincide)."""
+        groups = self._arrays.get("line_groups")
+        if groups is None:
+            groups = tuple(self._mesh.line_groups())
+            for a in groups:
+                a.flags.writeable = False
+            self._arrays["line_groups"] = groups
+        return groups
+
+    @property
+    def groups(self):
+        """The physical groups a solver selects lines or triangles by, as the .msh file numbers
+        and names them: a new dict {id: (dimension, name)}, dimension 1 for lines and 2 for
+        triangles, by dimension then id. Ids are unique across dimensions: 1 primary, 2 secondary,
+        3 boundary, 4 domain, 5 border, then one per drawn element (its id, else TAG#INDEX), then
+        one per region (``regions=True``), the same whatever ``domain``."""
+        return {g: (dim, name) for dim, g, name in self._mesh.groups()}
+
     def to_meshio(self):
-        """The mesh as a meshio.Mesh: the mesh meshio reads from the .msh file write() makes, with its
-        lines' groups by kind (the file also puts each line in "border" and in its drawn element's
-        group: read the file, e.g. with meshio.read, for those).
+        """The mesh as a meshio.Mesh: the mesh meshio reads from the .msh file write() makes, with
+        every group as a cell set.
 
         Points are (N, 3) with z = 0 (what meshio's readers give and its writers take). Cells come
-        as in the file: one block of "line4" per line tag present (primary, secondary, boundary;
-        each block in the order of ``lines``), then one of "triangle10" ("line3" and "triangle6"
-        when quadratic, "line" and "triangle" when linear); meshio's node order for these cells is
-        Gmsh's, the order of ``triangles`` and ``lines``. Cell data "gmsh:physical" holds each cell's physical group (1 primary, 2
-        secondary, 3 boundary, 4 domain, named in field_data) and "gmsh:geometrical" its entity;
-        point data "gmsh:dim_tags" the nodes' entities, classified as Gmsh does (those of a
-        feature line on its curve), so that meshio writes Gmsh 4.1 files of it that it reads back
-        (write()'s own files put every node on the surface). Gmsh 2.2 needs none of it.
+        as in the file: one block per set of groups its lines are in (``line_groups``; sets in
+        ascending order, lines in the order of ``lines`` within each), then one block per triangle
+        group (ascending; triangles in the order of ``triangles`` within each); "line4" and
+        "triangle10" ("line3" and "triangle6" when quadratic, "line" and "triangle" when linear),
+        whose node order in meshio is Gmsh's, the order of ``triangles`` and ``lines``.
+
+        Cell data "gmsh:physical" holds each cell's first (lowest) group, as meshio reads the file,
+        and "gmsh:geometrical" its entity (one per block); cell_sets hold every group by its name,
+        as a set over the blocks (a drawn element's outline and its region share the name: the set
+        holds both); field_data maps each name to [id, dimension] (for a shared name, the
+        region's). Point data "gmsh:dim_tags" gives the nodes' entities, classified as Gmsh does
+        (those of a feature line on its curve), so that meshio writes Gmsh 4.1 files of it that it
+        reads back (write()'s own files put every node on the surface). Gmsh 2.2 needs none of it.
 
         meshio cannot write "triangle10" to VTU: for a cubic VTU, use write("mesh.vtu").
         """
@@ -247,46 +279,50 @@ class Mesh:
         line_type, triangle_type = {3: ("line4", "triangle10"), 2: ("line3", "triangle6"), 1: ("line", "triangle")}[
             self.order
         ]
-        codes = self._mesh.line_tag_codes()
-        cells, physical, geometrical, field_data = [], [], [], {}
-        # Lines by physical group, ascending; each group is one curve entity tagged by the group.
-        for name in sorted(_curvemesh.LINE_TAG_NAMES, key=_PHYSICAL.get):
-            mine = codes == _curvemesh.LINE_TAG_NAMES.index(name)
-            if not mine.any():
-                continue
-            tag = _PHYSICAL[name]
-            cells.append(meshio.CellBlock(line_type, self.lines[mine]))
-            physical.append(np.full(mine.sum(), tag, dtype=np.int64))
-            geometrical.append(np.full(mine.sum(), tag, dtype=np.int64))
-            field_data[name] = np.array([tag, 1])
-        if len(self.triangles):  # the domain: physical group 4 on surface 1
-            cells.append(meshio.CellBlock(triangle_type, np.array(self.triangles)))
-            physical.append(np.full(len(self.triangles), _PHYSICAL["domain"], dtype=np.int64))
-            geometrical.append(np.ones(len(self.triangles), dtype=np.int64))
-            field_data["domain"] = np.array([_PHYSICAL["domain"], 2])
+        blocks = [(1, key, rows) for key, rows in _blocks([tuple(g) for g in self.line_groups])]
+        blocks += [(2, key, rows) for key, rows in _blocks([(t,) if t > 0 else () for t in self.triangle_groups])]
+        cells, physical, geometrical = [], [], []
+        entity = {1: 0, 2: 0}
+        for dim, key, rows in blocks:
+            entity[dim] += 1
+            data = self.lines[rows] if dim == 1 else self.triangles[rows]
+            cells.append(meshio.CellBlock(line_type if dim == 1 else triangle_type, data))
+            physical.append(np.full(len(rows), key[0] if key else 0, dtype=np.int64))
+            geometrical.append(np.full(len(rows), entity[dim], dtype=np.int64))
+        groups = self.groups
+        cell_sets = {}
+        for g, (dim, name) in groups.items():
+            members = cell_sets.setdefault(name, [np.empty(0, dtype=np.int64) for _ in blocks])
+            for b, (block_dim, key, rows) in enumerate(blocks):
+                if block_dim == dim and g in key:
+                    members[b] = np.arange(len(rows), dtype=np.int64)
+        field_data = {name: np.array([g, dim]) for g, (dim, name) in groups.items()}
         return meshio.Mesh(
             points,
             cells,
-            point_data={"gmsh:dim_tags": self._node_entities(codes)},
+            point_data={"gmsh:dim_tags": self._node_entities(blocks)},
             cell_data={"gmsh:physical": physical, "gmsh:geometrical": geometrical},
             field_data=field_data,
+            cell_sets=cell_sets,
         )
 
-    def _node_entities(self, codes):
+    def _node_entities(self, blocks):
         """(dim, tag) of the Gmsh entity of each node, as Gmsh classifies nodes: a node of a
-        feature line on that line's curve entity (where lines of several tags meet, primary
-        before secondary before boundary), every other node on surface 1. meshio's Gmsh 4.1
-        writer makes its entities of these, so each curve entity must hold a node."""
+        feature line on that line's curve entity, else on the surface entity of its triangles
+        (where several meet, the first entity's). meshio's Gmsh 4.1 writer makes its entities of
+        these, so each entity with cells must hold a node: one whose cells are all on the
+        others' takes its last cell's last node."""
         dim_tags = np.empty((len(self.nodes), 2), dtype=np.int64)
         dim_tags[:] = (2, 1)
-        names = sorted(_curvemesh.LINE_TAG_NAMES, key=_PHYSICAL.get)
-        lines_of = {name: self.lines[codes == _curvemesh.LINE_TAG_NAMES.index(name)] for name in names}
-        for name in reversed(names):
-            dim_tags[lines_of[name].ravel()] = (1, _PHYSICAL[name])
-        for name in names:
-            lines, tag = lines_of[name], _PHYSICAL[name]
-            if len(lines) and not np.any((dim_tags[:, 0] == 1) & (dim_tags[:, 1] == tag)):
-                dim_tags[lines[0, -1]] = (1, tag)
+        cells = {1: [self.lines[rows] for dim, _, rows in blocks if dim == 1],
+                 2: [self.triangles[rows] for dim, _, rows in blocks if dim == 2]}
+        for dim in (2, 1):
+            for e in reversed(range(len(cells[dim]))):
+                dim_tags[cells[dim][e].ravel()] = (dim, e + 1)
+        for dim in (1, 2):
+            for e, data in enumerate(cells[dim]):
+                if not np.any((dim_tags[:, 0] == dim) & (dim_tags[:, 1] == e + 1)):
+                    dim_tags[data[-1, -1]] = (dim, e + 1)
         return dim_tags
 
     def __repr__(self):
@@ -294,6 +330,15 @@ class Mesh:
             f"<curvemesh.Mesh order={self.order}: {len(self.nodes)} nodes, "
             f"{len(self.triangles)} triangles, {len(self.lines)} lines>"
         )
+
+
+def _blocks(keys):
+    """[(key, rows)]: the rows of `keys` by key, keys ascending, rows in order within each (how the
+    .msh file makes its entities: one per set of groups)."""
+    rows = {}
+    for i, key in enumerate(keys):
+        rows.setdefault(key, []).append(i)
+    return [(key, np.array(rows[key], dtype=np.int64)) for key in sorted(rows)]
 
 
 def _is_svg_text(svg):

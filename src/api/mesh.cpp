@@ -1,10 +1,13 @@
 // curvemesh::Mesh: the arrays of a finished mesh, and writing it with the command line's writers.
 #include <algorithm>
 #include <cctype>
+#include <set>
+#include <utility>
 
 #include "api/mesh_impl.hpp"
 #include "base/files.hpp"
 #include "io/high_order_mesh.hpp"
+#include "io/xdmf_writer.hpp"
 #include "pipeline/output.hpp"
 
 namespace curvemesh {
@@ -39,6 +42,21 @@ std::string extension(const std::string& path) {
   return e;
 }
 
+// Every group some triangle or line of `m` is in, by dimension, then id, named as the .msh names it.
+std::vector<Group> groups_of(const io::HighOrderMesh& m) {
+  std::set<std::pair<int, int>> used;  // (dimension, id)
+  for (int t : m.triangle_physical)
+    if (t > 0) used.insert({2, t});
+  for (int l = 0; l < m.line_count(); ++l)
+    for (int g : m.groups_of_line(l)) used.insert({1, g});
+  std::vector<Group> out;
+  for (const auto& [dimension, id] : used) {
+    const auto name = m.physical_names.find({dimension, id});
+    out.push_back(Group{dimension, id, name != m.physical_names.end() ? name->second : std::string()});
+  }
+  return out;
+}
+
 }  // namespace
 
 Mesh make_mesh(std::shared_ptr<const Mesh::Impl> impl) {
@@ -49,7 +67,7 @@ Mesh make_mesh(std::shared_ptr<const Mesh::Impl> impl) {
 
 std::shared_ptr<const Mesh::Impl> mesh_impl(pipeline::Result result, std::string input_path) {
   auto impl = std::make_shared<Mesh::Impl>();
-  const io::HighOrderMesh m = pipeline::high_order_mesh(result);
+  const io::HighOrderMesh& m = pipeline::high_order_mesh(result);
   impl->order = m.order;
   impl->nodes.reserve(m.nodes.size());
   for (const geometry::Vec2& p : m.nodes) impl->nodes.push_back({p.x(), p.y()});
@@ -57,6 +75,14 @@ std::shared_ptr<const Mesh::Impl> mesh_impl(pipeline::Result result, std::string
   impl->lines.assign(m.lines.begin(), m.lines.end());
   impl->line_tags.reserve(m.line_physical.size());
   for (int physical : m.line_physical) impl->line_tags.push_back(tag_of(physical));
+  impl->triangle_groups = m.triangle_physical;
+  impl->line_groups.reserve(m.line_physical.size());
+  for (int l = 0; l < m.line_count(); ++l) {
+    std::vector<int> groups = m.groups_of_line(l);
+    std::sort(groups.begin(), groups.end());
+    impl->line_groups.push_back(std::move(groups));
+  }
+  impl->groups = groups_of(m);
   const std::vector<int> curves = pipeline::line_curves(result, m);
   impl->line_curves.assign(curves.begin(), curves.end());
   impl->stats_json = pipeline::stats_text(result);
@@ -103,6 +129,15 @@ const std::vector<LineTag>& Mesh::line_tags() const {
 const std::vector<std::int64_t>& Mesh::line_curves() const {
   return of(impl_).line_curves;
 }
+const std::vector<int>& Mesh::triangle_groups() const {
+  return of(impl_).triangle_groups;
+}
+const std::vector<std::vector<int>>& Mesh::line_groups() const {
+  return of(impl_).line_groups;
+}
+const std::vector<Group>& Mesh::groups() const {
+  return of(impl_).groups;
+}
 const std::string& Mesh::stats_json() const {
   return of(impl_).stats_json;
 }
@@ -115,8 +150,10 @@ void Mesh::write(const std::string& path, int msh_version) const {
   if (!m.result)
     throw Error(Error::Kind::output, path + ": nothing to write: the Mesh is empty (default-constructed)");
   const std::string ext = extension(path);
+  std::vector<base::NamedPath> outputs{{"path", path}};
+  if (ext == ".xdmf") outputs.push_back({"the XDMF file's data", io::xdmf_data_path(path)});
   if (!m.input_path.empty())
-    if (const std::string clash = base::output_clash({{"drawing", m.input_path}}, {{"path", path}}); !clash.empty())
+    if (const std::string clash = base::output_clash({{"drawing", m.input_path}}, outputs); !clash.empty())
       throw Error(Error::Kind::invalid_parameters, clash);
   api::translate_errors([&] {
     if (ext == ".msh") {
@@ -126,11 +163,17 @@ void Mesh::write(const std::string& path, int msh_version) const {
       pipeline::write_msh(*m.result, path, msh_version);
     } else if (ext == ".vtu") {
       pipeline::write_vtu(*m.result, path);
+    } else if (ext == ".xdmf") {
+      if (!io::xdmf_order_supported(m.order))
+        throw Error(Error::Kind::invalid_parameters,
+                    path + ": XDMF has no triangle of order " + std::to_string(m.order) +
+                        " (dolfinx reads orders 1 and 2 from it): mesh with order 2 or 1, or write .msh");
+      pipeline::write_xdmf(*m.result, path);
     } else if (ext == ".svg") {
       pipeline::write_svg(*m.result, path);
     } else {
       throw Error(Error::Kind::output,
-                  path + ": cannot tell the format from the extension (.msh, .vtu or .svg)");
+                  path + ": cannot tell the format from the extension (.msh, .vtu, .xdmf or .svg)");
     }
   });
 }

@@ -23,6 +23,9 @@ struct Mesh::Impl {
   std::vector<std::int64_t> lines;
   std::vector<LineTag> line_tags;
   std::vector<std::int64_t> line_curves;
+  std::vector<int> triangle_groups;
+  std::vector<std::vector<int>> line_groups;
+  std::vector<Group> groups;
   std::string stats_json;
   std::vector<std::string> warnings;
   std::string input_path;  // the file it was read from (none for text or curves): never written over

@@ -176,6 +176,64 @@ def test_arrays_match_the_msh_file(examples, tmp_path):
     assert file_lines == ours
 
 
+def physical_groups(path):
+    """{id: (dimension, name, sorted element node lists)} of a .msh file, as Gmsh reads it."""
+    gmsh = pytest.importorskip("gmsh")
+    gmsh.initialize()
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.open(str(path))
+        tags = gmsh.model.mesh.getNodes()[0]
+        assert np.array_equal(tags, np.arange(1, len(tags) + 1))  # node tag k is node k - 1
+        out = {}
+        for dim, tag in gmsh.model.getPhysicalGroups():
+            elements = []
+            for entity in gmsh.model.getEntitiesForPhysicalGroup(dim, tag):
+                for t, nodes in zip(*gmsh.model.mesh.getElements(dim, entity)[::2]):
+                    size = gmsh.model.mesh.getElementProperties(t)[3]
+                    elements += [tuple(e) for e in (np.array(nodes, dtype=np.int64).reshape(-1, size) - 1).tolist()]
+            out[tag] = (dim, gmsh.model.getPhysicalName(dim, tag), sorted(elements))
+        return out
+    finally:
+        gmsh.finalize()
+
+
+@pytest.mark.parametrize("order", [1, 2, 3])
+def test_groups_are_the_files(order, examples, tmp_path):
+    """groups, line_groups and triangle_groups are the physical groups of the .msh file as Gmsh
+    reads it, and those --stats lists."""
+    m = curvemesh.mesh(examples / "overlapping-shapes.svg", order=order, regions=True, domain="filled")
+    m.write(tmp_path / "m.msh")
+    ours = {}
+    for g, (dim, name) in m.groups.items():
+        if dim == 1:
+            elements = [tuple(line) for line, groups in zip(m.lines.tolist(), m.line_groups) if g in groups]
+        else:
+            elements = [tuple(t) for t in m.triangles[m.triangle_groups == g].tolist()]
+        ours[g] = (dim, name, sorted(elements))
+    assert ours == physical_groups(tmp_path / "m.msh")
+    assert [(s["dim"], s["id"], s["name"]) for s in m.stats["groups"]] == [(d, g, n) for g, (d, n) in m.groups.items()]
+    assert m.triangle_groups.shape == (len(m.triangles),) and len(m.line_groups) == len(m.lines)
+    tag_ids = {"primary": 1, "secondary": 2, "boundary": 3}
+    assert [int(g[0]) for g in m.line_groups] == [tag_ids[t] for t in m.line_tags]
+    with pytest.raises(ValueError):
+        m.line_groups[0][0] = 7
+
+
+def test_xdmf_is_the_command_lines(examples, run_cli, tmp_path):
+    svg = examples / "overlapping-shapes.svg"
+    for folder in ["cli", "py"]:
+        (tmp_path / folder).mkdir()
+    run_cli("mesh", svg, "--order", "2", "--regions", "-o", tmp_path / "cli/m.msh", "--xdmf", tmp_path / "cli/m.xdmf")
+    m = curvemesh.mesh(svg, order=2, regions=True)
+    m.write(tmp_path / "py/m.xdmf")
+    for name in ["m.xdmf", "m.h5"]:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    with pytest.raises(ValueError, match="XDMF has no triangle of order 3"):
+        curvemesh.mesh(svg).write(tmp_path / "py/cubic.xdmf")
+    assert not (tmp_path / "py/cubic.xdmf").exists() and not (tmp_path / "py/cubic.h5").exists()
+
+
 @pytest.mark.parametrize("order", [2, 3])
 def test_check(order, examples, run_cli, tmp_path):
     m = curvemesh.mesh(examples / "overlapping-shapes.svg", order=order)
@@ -503,7 +561,8 @@ def test_docstrings():
     for thing in [curvemesh, curvemesh.mesh, curvemesh.mesh_curves, curvemesh.check, curvemesh.Mesh,
                   curvemesh.Mesh.write, curvemesh.Mesh.to_meshio]:
         assert thing.__doc__ and len(thing.__doc__) > 40, thing
-    for name in ["order", "nodes", "triangles", "lines", "line_tags", "line_curves", "stats", "warnings"]:
+    for name in ["order", "nodes", "triangles", "lines", "line_tags", "line_curves", "triangle_groups", "line_groups",
+                 "groups", "stats", "warnings"]:
         assert getattr(curvemesh.Mesh, name).__doc__, name
 
 

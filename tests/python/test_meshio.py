@@ -1,6 +1,6 @@
-"""Mesh.to_meshio(): the mesh meshio reads from our own .msh file, node order included (its groups
-by kind: the file's further groups are the file's alone); meshio writes it (Gmsh 4.1 and 2.2; VTU
-when linear or quadratic) and reads back the same geometry."""
+"""Mesh.to_meshio(): the mesh meshio reads from our own .msh file, node order and blocks included,
+with every group as a cell set; meshio writes it (Gmsh 4.1 and 2.2; VTU when linear or quadratic)
+and reads back the same geometry."""
 import numpy as np
 import pytest
 
@@ -39,11 +39,13 @@ ORDERS = {"cubic": 3, "quadratic": 2, "linear": 1}
 CELL_TYPES = {1: ("line", "triangle"), 2: ("line3", "triangle6"), 3: ("line4", "triangle10")}
 
 
-@pytest.fixture(scope="module", params=list(ORDERS))
+@pytest.fixture(scope="module", params=[(o, r) for o in ORDERS for r in (False, True)],
+                ids=[f"{o}{'-regions' if r else ''}" for o in ORDERS for r in (False, True)])
 def case(request, examples, tmp_path_factory):
-    order = ORDERS[request.param]
-    m = curvemesh.mesh(examples / "overlapping-shapes.svg", order=order)
-    folder = tmp_path_factory.mktemp(request.param)
+    name, regions = request.param
+    order = ORDERS[name]
+    m = curvemesh.mesh(examples / "overlapping-shapes.svg", order=order, regions=regions)
+    folder = tmp_path_factory.mktemp(name)
     m.write(folder / "own.msh")
     return m, folder, order
 
@@ -54,31 +56,44 @@ def test_to_meshio_is_our_msh_as_meshio_reads_it(case):
     own = meshio.read(folder / "own.msh")
     assert mine.points.shape == (len(m.nodes), 3) and np.all(mine.points[:, 2] == 0)
     assert np.array_equal(mine.points, own.points)
-    line_type, triangle_type = CELL_TYPES[order]
-    # The file has one block per set of groups (a line is also in "border" and its element's group);
-    # meshio's gmsh:physical is each cell's first group, its kind: cell for cell, node for node, the
-    # same as to_meshio's.
-    assert [b.type for b in mine.cells] == [line_type] * 3 + [triangle_type]
-    assert {b.type for b in own.cells} == {line_type, triangle_type}
-    assert_same_geometry(mine, own)
+    # Block for block, cell for cell, node for node: one block per set of groups (lines) and per
+    # group (triangles); gmsh:physical each cell's first group, gmsh:geometrical its entity.
+    assert [b.type for b in mine.cells] == [b.type for b in own.cells]
+    for a, b in zip(mine.cells, own.cells):
+        assert np.array_equal(a.data, b.data)
+    for key in ["gmsh:physical", "gmsh:geometrical"]:
+        assert len(mine.cell_data[key]) == len(own.cell_data[key])
+        for a, b in zip(mine.cell_data[key], own.cell_data[key]):
+            assert np.array_equal(a, b), key
+    assert {k: list(v) for k, v in mine.field_data.items()} == {k: list(v) for k, v in own.field_data.items()}
     # Nodes on the entities Gmsh would put them on; the file puts them all on surface 1.
     assert np.all(own.point_data["gmsh:dim_tags"] == (2, 1))
     dim_tags = mine.point_data["gmsh:dim_tags"]
     on_lines = np.zeros(len(m.nodes), dtype=bool)
     on_lines[m.lines.ravel()] = True
-    assert np.all(dim_tags[on_lines, 0] == 1) and np.all(dim_tags[~on_lines] == (2, 1))
+    assert np.all(dim_tags[on_lines, 0] == 1) and np.all(dim_tags[~on_lines, 0] == 2)
     for block, geometrical in zip(mine.cells, mine.cell_data["gmsh:geometrical"]):
-        if block.dim == 1:
-            assert np.any((dim_tags[:, 0] == 1) & (dim_tags[:, 1] == geometrical[0]))
-    # The kinds' groups are the file's, under the same ids; the file has the further ones too.
-    assert set(mine.field_data) == {"primary", "secondary", "boundary", "domain"}
-    assert {"border", "rect#1", "circle#2"} <= set(own.field_data)
-    for name in mine.field_data:
-        assert list(mine.field_data[name]) == list(own.field_data[name])
-    # The arrays: triangles as they are, lines grouped by tag (stably).
-    assert np.array_equal(mine.cells_dict[triangle_type], m.triangles)
-    by_tag = np.argsort([["primary", "secondary", "boundary"].index(t) for t in m.line_tags], kind="stable")
-    assert np.array_equal(mine.cells_dict[line_type], m.lines[by_tag])
+        assert np.any((dim_tags[:, 0] == block.dim) & (dim_tags[:, 1] == geometrical[0]))
+
+
+def test_cell_sets_hold_every_group(case):
+    """A cell set per group name holding exactly the lines of line_groups and the triangles of
+    triangle_groups in that group (an element's outline and its region share its name); where the
+    name is one group's alone, meshio's own reading of the file has the same set."""
+    m, folder, order = case
+    mine, own = m.to_meshio(), meshio.read(folder / "own.msh")
+    named = {}
+    for g, (dim, name) in m.groups.items():
+        named.setdefault(name, []).append(g)
+    assert set(mine.cell_sets) == set(named)
+    for name, ids in named.items():
+        cells = sorted(tuple(block.data[i]) for block, members in zip(mine.cells, mine.cell_sets[name])
+                       for i in members)
+        expect = sorted([tuple(l) for l, g in zip(m.lines, m.line_groups) if set(ids) & set(g)]
+                        + [tuple(t) for t, g in zip(m.triangles, m.triangle_groups) if g in ids])
+        assert cells == expect, name
+        if len(ids) == 1:
+            assert [list(a) for a in mine.cell_sets[name]] == [list(a) for a in own.cell_sets[name]], name
 
 
 @pytest.mark.parametrize("file_format", ["gmsh", "gmsh22"])

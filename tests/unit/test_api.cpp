@@ -3,13 +3,18 @@
 // the errors it throws (kind and message), and the check on good and inverted meshes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <curvemesh/curvemesh.hpp>
 #include <fstream>
 #include <limits>
 #include <set>
 #include <sstream>
 
+#include "io/xdmf_writer.hpp"
 #include "pipeline/output.hpp"
 #include "pipeline/pipeline.hpp"
 #include "scratch_dir.hpp"
@@ -230,6 +235,81 @@ TEST(Api, SameMeshAndFilesAsTheCommandLine) {
     m.write(dir / (tag + "-upper.MSH"));
     EXPECT_TRUE(read_file(dir / (tag + "-upper.MSH")) == read_file(dir / (tag + "-cli.msh")));
   }
+}
+
+// The groups a solver selects by: the physical groups of the mesh the command line writes, with
+// the ids and names `--stats` lists, whatever the domain.
+TEST(Api, GroupsAreTheFilesPhysicalGroups) {
+  for (const Domain domain : {Domain::box, Domain::filled}) {
+    Parameters p;
+    p.order = 2;
+    p.regions = true;
+    p.domain = domain;
+    const Mesh m = mesh_file(kShapes, p);
+    const pipeline::Result r = pipeline::run(pipeline::Source::file(kShapes), p);
+    const io::HighOrderMesh& h = pipeline::high_order_mesh(r);
+    EXPECT_EQ(m.triangle_groups(), h.triangle_physical);
+    ASSERT_EQ(m.line_groups().size(), m.line_count());
+    std::map<int, std::size_t> lines_in, triangles_in;
+    for (std::size_t l = 0; l < m.line_count(); ++l) {
+      const std::vector<int>& g = m.line_groups()[l];
+      ASSERT_FALSE(g.empty());
+      EXPECT_TRUE(std::is_sorted(g.begin(), g.end()));
+      EXPECT_EQ(g.front(), 1 + static_cast<int>(m.line_tags()[l]));  // primary 1, secondary 2, boundary 3
+      std::vector<int> file = h.groups_of_line(static_cast<int>(l));
+      std::sort(file.begin(), file.end());
+      EXPECT_EQ(g, file);
+      for (int id : g) ++lines_in[id];
+    }
+    for (int id : m.triangle_groups()) ++triangles_in[id];
+    // Every group once, named, and the same as the statistics list.
+    const nlohmann::json stats = nlohmann::json::parse(m.stats_json())["groups"];
+    ASSERT_EQ(m.groups().size(), stats.size());
+    for (std::size_t i = 0; i < stats.size(); ++i) {
+      const Group& g = m.groups()[i];
+      EXPECT_EQ(g.dimension, stats[i]["dim"].get<int>());
+      EXPECT_EQ(g.id, stats[i]["id"].get<int>());
+      EXPECT_EQ(g.name, stats[i]["name"].get<std::string>());
+      EXPECT_FALSE(g.name.empty());
+      if (g.dimension == 1)
+        EXPECT_EQ(lines_in[g.id], stats[i]["lines"].get<std::size_t>()) << g.name;
+      else
+        EXPECT_EQ(triangles_in[g.id], stats[i]["triangles"].get<std::size_t>()) << g.name;
+    }
+    EXPECT_EQ(std::count_if(m.groups().begin(), m.groups().end(), [](const Group& g) { return g.dimension == 2; }),
+              static_cast<std::ptrdiff_t>(triangles_in.size()));
+  }
+}
+
+// XDMF: the command line's two files, both or neither; no cubic triangle.
+TEST(Api, WritesXdmfAsTheCommandLine) {
+  const ScratchDir dir;
+  Parameters p;
+  p.order = 2;
+  p.regions = true;
+  const Mesh m = mesh_file(kShapes, p);
+  const pipeline::Result r = pipeline::run(pipeline::Source::file(kShapes), p);
+  std::filesystem::create_directory(dir / "api");
+  std::filesystem::create_directory(dir / "cli");
+  m.write(dir / "api/m.XDMF");
+  const io::XdmfFiles cli = io::xdmf_files(pipeline::high_order_mesh(r), "m.h5");
+  EXPECT_TRUE(read_file(dir / "api/m.XDMF") == cli.xml);
+  EXPECT_TRUE(read_file(dir / "api/m.h5") == cli.data);
+
+  p.order = 3;
+  const Mesh cubic = mesh_file(kShapes, p);
+  const auto [kind, message] = error_of([&] { cubic.write(dir / "cubic.xdmf"); });
+  EXPECT_EQ(kind, Error::Kind::invalid_parameters);
+  EXPECT_NE(message.find("order 3"), std::string::npos) << message;
+  EXPECT_FALSE(std::filesystem::exists(dir / "cubic.xdmf"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "cubic.h5"));
+  // The data file may not be the drawing either.
+  const ScratchDir drawings;
+  std::filesystem::copy_file(kShapes, drawings / "d.h5");
+  p.order = 2;
+  const Mesh of_h5 = mesh_file(drawings / "d.h5", p);
+  EXPECT_EQ(error_of([&] { of_h5.write(drawings / "d.xdmf"); }).first, Error::Kind::invalid_parameters);
+  EXPECT_FALSE(std::filesystem::exists(drawings / "d.xdmf"));
 }
 
 // Curves given by their control points: each primary line lies on the curve line_curves names.
