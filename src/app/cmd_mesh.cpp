@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -68,8 +69,9 @@ std::string xdmf_data(const MeshArgs& args) {
   return args.output_xdmf.empty() ? std::string() : io::xdmf_data_path(args.output_xdmf);
 }
 
-// The mesh, its drawing, VTU, XDMF and statistics, written together or not at all.
-int write_mesh(const MeshArgs& args, pipeline::Result& r, Written& written) {
+// The mesh, its drawing, VTU, XDMF (its data in `hdf5` when made ahead) and statistics, written
+// together or not at all.
+int write_mesh(const MeshArgs& args, pipeline::Result& r, io::Hdf5FilePtr hdf5, Written& written) {
   return write_together([&](base::OutputFiles& out) {
     const auto t = std::chrono::steady_clock::now();
     // The plain high-order mesh every file is written from (the run made it once).
@@ -83,7 +85,7 @@ int write_mesh(const MeshArgs& args, pipeline::Result& r, Written& written) {
     if (!args.output_vtu.empty()) also(args.output_vtu, io::vtu_string(mesh, pipeline::cell_data(r)));
     if (!args.output_xdmf.empty()) {
       const std::string data = xdmf_data(args);
-      io::XdmfFiles xdmf = io::xdmf_files(mesh, std::filesystem::path(data).filename().string());
+      io::XdmfFiles xdmf = io::xdmf_files(mesh, std::filesystem::path(data).filename().string(), std::move(hdf5));
       also(args.output_xdmf, xdmf.xml);
       also(data, xdmf.data);
     }
@@ -117,6 +119,10 @@ int run_mesh(const MeshArgs& args) {
   if (args.verbose) run.log = &std::cerr;
   run.warn = [&](const std::string& w) { warn(args.input, w); };
 
+  // HDF5 and its file made on another thread while the drawing is meshed (their fixed cost was
+  // most of what --xdmf added to a small drawing's run); write_mesh uses them only after get().
+  std::future<io::Hdf5FilePtr> hdf5;
+  if (!args.output_xdmf.empty()) hdf5 = std::async(std::launch::async, io::start_hdf5_file);
   pipeline::Result r;
   try {
     std::optional<ProgressDisplay> display;
@@ -130,7 +136,7 @@ int run_mesh(const MeshArgs& args) {
     return exit_code(e);
   }
   Written written;
-  if (const int code = write_mesh(args, r, written); code != kOk) return code;
+  if (const int code = write_mesh(args, r, hdf5.valid() ? hdf5.get() : nullptr, written); code != kOk) return code;
   if (!args.quiet)
     summarize(written, r, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return kOk;

@@ -12,33 +12,23 @@
 
 namespace curvemesh::io {
 
-namespace {
-
-// XDMF's names of the element types. Its node orders are VTK's, which for triangles up to order 2
-// and lines are Gmsh's (the corners, then the inner nodes edge by edge): the arrays go as they are.
-const char* triangle_type(int order) {
-  return order == 1 ? "Triangle" : "Triangle_6";
-}
-const char* line_type(int order) {
-  return order == 1 ? "Polyline" : "Edge_3";
-}
-
 // An HDF5 file made in memory (the core driver, no backing store), so that its bytes go through
-// the same all-or-nothing, no-link writing as every other output.
-class MemoryH5 {
- public:
-  MemoryH5() {
+// the same all-or-nothing, no-link writing as every other output. The driver grows its buffer by
+// `expected_bytes` at a time: the file's size foreseen, so that it is allocated once, and no
+// larger (each page of memory first touched costs).
+struct Hdf5File {
+  explicit Hdf5File(std::size_t expected_bytes) {
     fapl_ = H5Pcreate(H5P_FILE_ACCESS);
-    if (fapl_ < 0 || H5Pset_fapl_core(fapl_, 1 << 20, 0) < 0) throw std::runtime_error("HDF5: no in-memory file");
+    if (fapl_ < 0 || H5Pset_fapl_core(fapl_, expected_bytes, 0) < 0) throw std::runtime_error("HDF5: no in-memory file");
     file_ = H5Fcreate("curvemesh.h5", H5F_ACC_TRUNC, H5P_DEFAULT, fapl_);
     if (file_ < 0) throw std::runtime_error("HDF5: cannot create an in-memory file");
   }
-  ~MemoryH5() {
+  ~Hdf5File() {
     if (file_ >= 0) H5Fclose(file_);
     if (fapl_ >= 0) H5Pclose(fapl_);
   }
-  MemoryH5(const MemoryH5&) = delete;
-  MemoryH5& operator=(const MemoryH5&) = delete;
+  Hdf5File(const Hdf5File&) = delete;
+  Hdf5File& operator=(const Hdf5File&) = delete;
 
   // Makes the group at `path` ("/mesh").
   void group(const std::string& path) {
@@ -85,6 +75,24 @@ class MemoryH5 {
   hid_t fapl_ = -1, file_ = -1;
 };
 
+// The step of a file made before its size is known (start_hdf5_file): a small mesh's in one.
+constexpr std::size_t kStartedFileStep = std::size_t(1) << 18;
+
+void Hdf5FileDeleter::operator()(Hdf5File* file) const noexcept {
+  delete file;
+}
+
+namespace {
+
+// XDMF's names of the element types. Its node orders are VTK's, which for triangles up to order 2
+// and lines are Gmsh's (the corners, then the inner nodes edge by edge): the arrays go as they are.
+const char* triangle_type(int order) {
+  return order == 1 ? "Triangle" : "Triangle_6";
+}
+const char* line_type(int order) {
+  return order == 1 ? "Polyline" : "Edge_3";
+}
+
 std::vector<std::int64_t> wide(std::span<const int> v) {
   return std::vector<std::int64_t>(v.begin(), v.end());
 }
@@ -118,7 +126,7 @@ std::vector<int> facet_tags(const HighOrderMesh& m) {
 
 // A grid of elements with their tags on the nodes of the grid "mesh" (referred to, not repeated),
 // its arrays written to `h5` under /NAME.
-void tag_grid(std::ostream& xml, MemoryH5& h5, const std::string& data_name, const std::string& name,
+void tag_grid(std::ostream& xml, Hdf5File& h5, const std::string& data_name, const std::string& name,
               const char* type, int size, const std::vector<int>& nodes, const std::vector<int>& tags) {
   h5.group("/" + name);
   h5.write("/" + name + "/topology", wide(nodes), std::size_t(size));
@@ -148,11 +156,24 @@ std::string xdmf_data_path(const std::string& xdmf_path) {
   return p.string();
 }
 
-XdmfFiles xdmf_files(const HighOrderMesh& m, const std::string& data_name) {
+Hdf5FilePtr start_hdf5_file() noexcept {
+  try {
+    return Hdf5FilePtr(new Hdf5File(kStartedFileStep));
+  } catch (...) {
+    return nullptr;
+  }
+}
+
+XdmfFiles xdmf_files(const HighOrderMesh& m, const std::string& data_name, Hdf5FilePtr file) {
   if (!xdmf_order_supported(m.order))
     throw std::invalid_argument("XDMF has no triangle of order " + std::to_string(m.order) + " (orders 1 and 2)");
   if (auto error = m.structure_error()) throw std::logic_error("xdmf: " + *error);
-  MemoryH5 h5;
+  // The arrays' bytes (the triangles twice: the mesh's and the cell tags' topology), and room for
+  // HDF5's own structures (a few kilobytes).
+  const std::size_t values = 2 * m.nodes.size() + 2 * m.triangles.size() + m.triangle_physical.size() +
+                             m.lines.size() + m.line_physical.size();
+  if (!file) file.reset(new Hdf5File(8 * values + (std::size_t(1) << 16)));
+  Hdf5File& h5 = *file;
   std::vector<double> xy;
   xy.reserve(2 * m.nodes.size());
   for (const geometry::Vec2& p : m.nodes) xy.insert(xy.end(), {p.x(), p.y()});

@@ -1,8 +1,11 @@
 #include "regions/faces.hpp"
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <queue>
+#include <span>
+#include <stdexcept>
 #include <utility>
 
 #include "mesh/union_find.hpp"
@@ -154,7 +157,7 @@ namespace {
 
 // The point and the derivative at s of the polynomial curve through p[0..n] at s = 0, 1/n, ..., 1
 // (an edge of a mesh of order n): its Lagrange basis on the equispaced nodes, differentiated.
-std::pair<geometry::Vec2, geometry::Vec2> equispaced_curve(const std::vector<geometry::Vec2>& p, double s) {
+std::pair<geometry::Vec2, geometry::Vec2> equispaced_curve(std::span<const geometry::Vec2> p, double s) {
   const int order = static_cast<int>(p.size()) - 1;
   geometry::Vec2 x = geometry::Vec2::Zero(), dx = geometry::Vec2::Zero();
   for (int i = 0; i <= order; ++i) {
@@ -184,7 +187,9 @@ double line_length(const io::HighOrderMesh& mesh, int l) {
                                        0.95308992296933200};
   static constexpr double kWeight[5] = {0.11846344252809454, 0.23931433524968324, 0.28444444444444444,
                                         0.23931433524968324, 0.11846344252809454};
-  std::vector<geometry::Vec2> p(order + 1);
+  if (order < 1 || order > 3) throw std::logic_error("a mesh of order " + std::to_string(order));
+  std::array<geometry::Vec2, 4> nodes;  // order ≤ 3
+  const std::span<geometry::Vec2> p(nodes.data(), std::size_t(order) + 1);
   p[0] = mesh.nodes[line[0]];
   p[order] = mesh.nodes[line[1]];
   for (int k = 1; k < order; ++k) p[k] = mesh.nodes[line[1 + k]];
@@ -202,7 +207,9 @@ double triangle_area(const io::HighOrderMesh& mesh, int t) {
   static constexpr double kPoint[3] = {0.11270166537925831148, 0.5, 0.88729833462074168852};
   static constexpr double kWeight[3] = {5.0 / 18, 8.0 / 18, 5.0 / 18};
   double twice = 0;
-  std::vector<geometry::Vec2> p(order + 1);
+  if (order < 1 || order > 3) throw std::logic_error("a mesh of order " + std::to_string(order));
+  std::array<geometry::Vec2, 4> nodes;  // order ≤ 3
+  const std::span<geometry::Vec2> p(nodes.data(), std::size_t(order) + 1);
   for (int e = 0; e < 3; ++e) {
     p[0] = mesh.nodes[tri[e]];
     p[order] = mesh.nodes[tri[(e + 1) % 3]];

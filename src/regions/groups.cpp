@@ -1,6 +1,7 @@
 #include "regions/groups.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <map>
 #include <utility>
 
@@ -51,12 +52,23 @@ RegionKeys region_keys(const svg::FeatureSoup& soup) {
 }
 
 std::vector<char> border_lines(const io::HighOrderMesh& mesh) {
-  const auto triangles_on = edge_triangles(mesh);
+  // Every triangle's edges by their corners, sorted: an edge on one triangle appears once. (A
+  // sorted array rather than a map of edges: this runs on every mesh given out.)
+  const auto key = [](int a, int b) {
+    return std::uint64_t(std::uint32_t(std::min(a, b))) << 32 | std::uint32_t(std::max(a, b));
+  };
+  std::vector<std::uint64_t> edges;
+  edges.reserve(3 * std::size_t(mesh.triangle_count()));
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    const auto tri = mesh.triangle(t);
+    for (int e = 0; e < 3; ++e) edges.push_back(key(tri[e], tri[(e + 1) % 3]));
+  }
+  std::sort(edges.begin(), edges.end());
   std::vector<char> out(mesh.line_count(), 0);
   for (int l = 0; l < mesh.line_count(); ++l) {
     const auto ends = mesh.line(l);
-    const auto it = triangles_on.find({std::min(ends[0], ends[1]), std::max(ends[0], ends[1])});
-    out[l] = it != triangles_on.end() && it->second.size() == 1;
+    const auto [first, last] = std::equal_range(edges.begin(), edges.end(), key(ends[0], ends[1]));
+    out[l] = last - first == 1;
   }
   return out;
 }
