@@ -1,7 +1,5 @@
 #include "io/xdmf_writer.hpp"
 
-#include <hdf5.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
@@ -9,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <vector>
+
+#include "io/hdf5_library.hpp"
 
 namespace curvemesh::io {
 
@@ -18,48 +18,48 @@ namespace curvemesh::io {
 // larger (each page of memory first touched costs).
 struct Hdf5File {
   explicit Hdf5File(std::size_t expected_bytes) {
-    fapl_ = H5Pcreate(H5P_FILE_ACCESS);
-    if (fapl_ < 0 || H5Pset_fapl_core(fapl_, expected_bytes, 0) < 0) throw std::runtime_error("HDF5: no in-memory file");
-    file_ = H5Fcreate("curvemesh.h5", H5F_ACC_TRUNC, H5P_DEFAULT, fapl_);
+    fapl_ = h5.Pcreate(h5.P_FILE_ACCESS);
+    if (fapl_ < 0 || h5.Pset_fapl_core(fapl_, expected_bytes, 0) < 0) throw std::runtime_error("HDF5: no in-memory file");
+    file_ = h5.Fcreate("curvemesh.h5", Hdf5Library::F_ACC_TRUNC, H5P_DEFAULT, fapl_);
     if (file_ < 0) throw std::runtime_error("HDF5: cannot create an in-memory file");
   }
   ~Hdf5File() {
-    if (file_ >= 0) H5Fclose(file_);
-    if (fapl_ >= 0) H5Pclose(fapl_);
+    if (file_ >= 0) h5.Fclose(file_);
+    if (fapl_ >= 0) h5.Pclose(fapl_);
   }
   Hdf5File(const Hdf5File&) = delete;
   Hdf5File& operator=(const Hdf5File&) = delete;
 
   // Makes the group at `path` ("/mesh").
   void group(const std::string& path) {
-    const hid_t properties = untimed(H5Pcreate(H5P_GROUP_CREATE));
-    const hid_t g = H5Gcreate2(file_, path.c_str(), H5P_DEFAULT, properties, H5P_DEFAULT);
-    H5Pclose(properties);
+    const hid_t properties = untimed(h5.Pcreate(h5.P_GROUP_CREATE));
+    const hid_t g = h5.Gcreate2(file_, path.c_str(), H5P_DEFAULT, properties, H5P_DEFAULT);
+    h5.Pclose(properties);
     if (g < 0) throw std::runtime_error("HDF5: cannot make group " + path);
-    H5Gclose(g);
+    h5.Gclose(g);
   }
 
   // Writes a (rows, columns) array at `path` ("/mesh/topology"), in a group made before.
   template <class T>
   void write(const std::string& path, const std::vector<T>& values, std::size_t columns) {
     const hsize_t dims[2] = {values.size() / std::max<std::size_t>(columns, 1), columns};
-    const hid_t type = std::is_floating_point_v<T> ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64;
-    const hid_t space = H5Screate_simple(columns > 1 ? 2 : 1, dims, nullptr);
-    const hid_t properties = untimed(H5Pcreate(H5P_DATASET_CREATE));
-    const hid_t set = H5Dcreate2(file_, path.c_str(), type, space, H5P_DEFAULT, properties, H5P_DEFAULT);
-    const herr_t written = set < 0 ? -1 : H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
-    if (set >= 0) H5Dclose(set);
-    H5Pclose(properties);
-    H5Sclose(space);
+    const hid_t type = std::is_floating_point_v<T> ? h5.T_NATIVE_DOUBLE : h5.T_NATIVE_INT64;
+    const hid_t space = h5.Screate_simple(columns > 1 ? 2 : 1, dims, nullptr);
+    const hid_t properties = untimed(h5.Pcreate(h5.P_DATASET_CREATE));
+    const hid_t set = h5.Dcreate2(file_, path.c_str(), type, space, H5P_DEFAULT, properties, H5P_DEFAULT);
+    const herr_t written = set < 0 ? -1 : h5.Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+    if (set >= 0) h5.Dclose(set);
+    h5.Pclose(properties);
+    h5.Sclose(space);
     if (written < 0) throw std::runtime_error("HDF5: cannot write " + path);
   }
 
   // The file's bytes.
   std::string bytes() {
-    if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw std::runtime_error("HDF5: cannot flush");
-    const ssize_t size = H5Fget_file_image(file_, nullptr, 0);
+    if (h5.Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw std::runtime_error("HDF5: cannot flush");
+    const ssize_t size = h5.Fget_file_image(file_, nullptr, 0);
     std::string out(size > 0 ? std::size_t(size) : 0, '\0');
-    if (size <= 0 || H5Fget_file_image(file_, out.data(), out.size()) != size)
+    if (size <= 0 || h5.Fget_file_image(file_, out.data(), out.size()) != size)
       throw std::runtime_error("HDF5: cannot read the file image");
     return out;
   }
@@ -67,11 +67,12 @@ struct Hdf5File {
  private:
   // Object creation properties without the times HDF5 records by default: the same mesh gives
   // the same bytes.
-  static hid_t untimed(hid_t properties) {
-    if (properties < 0 || H5Pset_obj_track_times(properties, 0) < 0) throw std::runtime_error("HDF5: no properties");
+  hid_t untimed(hid_t properties) {
+    if (properties < 0 || h5.Pset_obj_track_times(properties, 0) < 0) throw std::runtime_error("HDF5: no properties");
     return properties;
   }
 
+  Hdf5Library h5;  // first: the last destroyed
   hid_t fapl_ = -1, file_ = -1;
 };
 

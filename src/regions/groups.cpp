@@ -13,7 +13,7 @@ namespace {
 
 // Gives a name used before "@2", "@3", ... (each name counted in `seen`).
 std::string unique_name(std::string name, std::map<std::string, int>& seen) {
-  if (const int n = seen[name]++; n > 0) name += "@" + std::to_string(n + 1);
+  if (const int n = seen[name]++; n > 0) name.append(1, '@').append(std::to_string(n + 1));
   return name;
 }
 
