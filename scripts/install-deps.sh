@@ -17,8 +17,9 @@ packages=(
   pybind11-dev python3-dev python3-pytest
   # independent readers used by the tests
   python3 python3-numpy python3-svgelements python3-meshio python3-gmsh librsvg2-bin
-  # a real solver on the meshes (the FEniCSx test): dolfinx reads the .msh and the XDMF
-  python3-dolfinx
+  # real solvers on the meshes: dolfinx reads the .msh and the XDMF (the FEniCSx test), deal.II's
+  # own reader the linear .msh of --msh-boundary-only (the deal.II test)
+  python3-dolfinx libdeal.ii-dev
   # the drawings the corpus tests and scripts read (~8,100 SVGs, 180 MB)
   openclipart-svg
   # peak-memory measurement in the corpus scripts
