@@ -287,6 +287,46 @@ TEST(P3Certify, DoubleAgreesWithExactAtAnyScale) {
   EXPECT_GT(subdivided, 100);  // many were decided only below the element's own coefficients
 }
 
+// The double certificate is a filter for the exact one (bernstein_certificate.hpp): a verdict it
+// reaches is the exact search's with the same limits, even limits small enough that both searches
+// often stop undecided.
+TEST(P3Certify, DecidedVerdictIsTheExactOneUnderTheSameLimits) {
+  const P3Nodes reference = arc_element(0.17);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> noise(-0.03, 0.03);
+  int decided = 0, undecided = 0;
+  for (int trial = 0; trial < 1500; ++trial) {
+    P3Nodes n = reference;
+    for (auto& p : n) p += Vec2(noise(rng), noise(rng));
+    const JacobianCheckOptions limits{.max_depth = 1 + trial % 3, .max_subtriangles = 3 + trial % 7};
+    const JacobianVerdict verdict = certify_jacobian(n, limits).verdict;
+    if (verdict == JacobianVerdict::undecided) {
+      ++undecided;
+      continue;
+    }
+    ++decided;
+    ASSERT_EQ(certify_jacobian_exact(n, limits), verdict) << "trial " << trial;
+  }
+  EXPECT_GT(decided, 300);
+  EXPECT_GT(undecided, 100);  // the limits bite
+}
+
+// Products of coordinates of 1e-170 underflow: the bound must then leave the element undecided,
+// never call a valid element not positive (its coefficients round to 0). Coordinates of 1e200
+// overflow: undecided too.
+TEST(P3Certify, UnderflowAndOverflowLeaveTheElementUndecided) {
+  const P3Nodes n = arc_element(0.1);
+  ASSERT_EQ(certify_jacobian_exact(n), JacobianVerdict::positive);
+  for (double scale : {1e-170, 1e-300, 1e200, 1e300}) {
+    const P3Nodes m = transformed(n, scale, Vec2::Zero());
+    EXPECT_EQ(certify_jacobian(m).verdict, JacobianVerdict::undecided) << scale;
+    EXPECT_EQ(certify_jacobian_exact(m), JacobianVerdict::positive) << scale;
+  }
+  for (double scale : {1e-100, 1e100})
+    EXPECT_EQ(certify_jacobian(transformed(n, scale, Vec2::Zero())).verdict, JacobianVerdict::positive)
+        << scale;
+}
+
 }  // namespace
 }  // namespace curvemesh::geometry
 
