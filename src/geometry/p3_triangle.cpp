@@ -61,7 +61,10 @@ double third_truncated(const std::array<int, 3>& w, const std::array<double, 3>&
 
 P3Nodes p3_straight_nodes_truncated(const Vec2& a, const Vec2& b, const Vec2& c) {
   P3Nodes out;
-  for (int i = 0; i < 10; ++i) {
+  // The corners are exact; + 0.0 turns −0 into +0, as a rational has no sign of zero.
+  const Vec2 zero = Vec2::Zero();
+  out[0] = a + zero, out[1] = b + zero, out[2] = c + zero;
+  for (int i = 3; i < 10; ++i) {
     const int u3 = kP3ReferenceNodesTimes3[i][0], v3 = kP3ReferenceNodesTimes3[i][1];
     const std::array<int, 3> w{3 - u3 - v3, u3, v3};
     out[i] = Vec2(third_truncated(w, {a.x(), b.x(), c.x()}), third_truncated(w, {a.y(), b.y(), c.y()}));

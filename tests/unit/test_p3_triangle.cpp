@@ -375,7 +375,7 @@ TEST(P3Straight, TruncatedNodesAreTheRationalNodesAsGmpRoundsThem) {
   const auto coordinate = [&](int around) {
     switch (pick(rng)) {
       case 0:
-        return 0.0;
+        return pick(rng) % 2 ? 0.0 : -0.0;
       case 1:
         return std::ldexp(mantissa(rng), -1060);  // subnormal results
       case 2:
