@@ -123,6 +123,7 @@ py::dict report_dict(const curvemesh::CheckReport& r) {
   d["invalid"] = r.invalid;
   d["undecided"] = r.undecided;
   d["min_scaled_jacobian"] = r.min_scaled_jacobian;
+  d["exact_fallbacks"] = r.exact_fallbacks;
   return d;
 }
 
@@ -264,24 +265,27 @@ PYBIND11_MODULE(_curvemesh, m) {
       "Meshes cubic Bezier curves given as a float64 array (n, 4, 2) of control points.");
   m.def(
       "check_file",
-      [](const std::string& path) {
+      [](const std::string& path, bool exact) {
         curvemesh::CheckReport r;
         {
           py::gil_scoped_release release;
-          r = curvemesh::check_file(path);
+          r = curvemesh::check_file(path, {.exact = exact});
         }
         return report_dict(r);
       },
-      py::arg("path"), "Checks a Gmsh .msh file; a dict of the verdict.");
+      py::arg("path"), py::arg("exact") = false,
+      "Checks a Gmsh .msh file (every element in rationals when exact); a dict of the verdict.");
   m.def(
       "check",
-      [](const curvemesh::Mesh& mesh) {
+      [](const curvemesh::Mesh& mesh, bool exact) {
         curvemesh::CheckReport r;
         {
           py::gil_scoped_release release;
-          r = curvemesh::check(mesh);
+          r = curvemesh::check(mesh, {.exact = exact});
         }
         return report_dict(r);
       },
-      py::arg("mesh"), "Checks a mesh as its .msh file would hold it; a dict of the verdict.");
+      py::arg("mesh"), py::arg("exact") = false,
+      "Checks a mesh as its .msh file would hold it (every element in rationals when exact); a dict "
+      "of the verdict.");
 }

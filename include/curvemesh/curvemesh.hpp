@@ -132,7 +132,8 @@ CURVEMESH_API Mesh mesh_svg(const std::string& svg_text, const Parameters& param
 CURVEMESH_API Mesh mesh_curves(const std::vector<Curve>& curves, const Parameters& parameters = {});
 
 // The verdict of `curvemesh check` on a mesh as a file holds it: every element's Jacobian
-// determinant decided on the whole element with exact rationals on the coordinates as written.
+// determinant decided on the whole element as exact rationals on the coordinates as written
+// decide it.
 struct CheckReport {
   // The elements' order as the file holds them: 1 (3 nodes), 2 (6 nodes) or 3 (10 nodes).
   int order = 0;
@@ -141,13 +142,24 @@ struct CheckReport {
   std::size_t invalid = 0;         // elements not certified positive (0 for a valid mesh)
   std::size_t undecided = 0;       // of those, the ones the exact test could not decide
   double min_scaled_jacobian = 0;  // over the elements
+  // How many elements were decided with exact rationals: those the certificate in doubles left
+  // undecided (nearly degenerate ones), or all of them with CheckOptions::exact.
+  std::size_t exact_fallbacks = 0;
+};
+
+// How `check` and `check_file` decide (`curvemesh check`'s options).
+struct CheckOptions {
+  // Decide every element with exact rationals (`--exact`). By default a certificate in doubles
+  // with a rigorous bound on its rounding errors decides first and rationals only what it cannot:
+  // the same verdicts, many times faster.
+  bool exact = false;
 };
 
 // Checks a Gmsh .msh file (of any 2D triangle mesh of order 1, 2 or 3). Throws Error
 // (invalid_input) when the file cannot be read.
-CURVEMESH_API CheckReport check_file(const std::string& msh_path);
+CURVEMESH_API CheckReport check_file(const std::string& msh_path, const CheckOptions& options = {});
 // Checks the mesh as its .msh file would hold it (written with 17 significant digits, read back:
 // the same doubles). An empty Mesh gives an empty report.
-CURVEMESH_API CheckReport check(const Mesh& mesh);
+CURVEMESH_API CheckReport check(const Mesh& mesh, const CheckOptions& options = {});
 
 }  // namespace curvemesh

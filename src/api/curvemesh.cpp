@@ -29,6 +29,7 @@ CheckReport report_of(const pipeline::MeshCheck& c) {
   r.invalid = c.invalid;
   r.undecided = c.undecided;
   r.min_scaled_jacobian = c.min_scaled_jacobian;
+  r.exact_fallbacks = c.exact_fallbacks;
   return r;
 }
 
@@ -67,7 +68,7 @@ Mesh mesh_curves(const std::vector<Curve>& curves, const Parameters& parameters)
   return mesh_source(pipeline::Source::beziers(beziers), parameters);
 }
 
-CheckReport check_file(const std::string& msh_path) {
+CheckReport check_file(const std::string& msh_path, const CheckOptions& options) {
   return api::translate_errors([&] {
     io::HighOrderMesh m;
     try {
@@ -76,11 +77,11 @@ CheckReport check_file(const std::string& msh_path) {
     } catch (const io::MshError& e) {
       throw Error(Error::Kind::invalid_input, e.what());  // the message starts with the path
     }
-    return report_of(pipeline::check_mesh(m));
+    return report_of(pipeline::check_mesh(m, {.exact = options.exact}));
   });
 }
 
-CheckReport check(const Mesh& mesh) {
+CheckReport check(const Mesh& mesh, const CheckOptions& options) {
   // The .msh file holds the nodes with 17 significant digits, which read back as the very same
   // doubles: checking the arrays is checking the file.
   return api::translate_errors([&] {
@@ -90,7 +91,7 @@ CheckReport check(const Mesh& mesh) {
     m.nodes.reserve(mesh.node_count());
     for (const auto& [x, y] : mesh.nodes()) m.nodes.emplace_back(x, y);
     m.triangles.assign(mesh.triangles().begin(), mesh.triangles().end());
-    return report_of(pipeline::check_mesh(m));
+    return report_of(pipeline::check_mesh(m, {.exact = options.exact}));
   });
 }
 

@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <array>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -129,17 +130,20 @@ std::string read_input_file(const std::string& path, std::uint64_t max_bytes, co
   std::string text(static_cast<std::size_t>(st.st_size), '\0');
   std::size_t done = 0;
   for (;;) {
-    if (done == text.size()) {
-      if (done >= max_bytes + 1) throw too_large(done);  // it grew while being read
-      text.resize(std::min<std::uint64_t>(max_bytes + 1, std::max<std::size_t>(2 * done, 4096)));
-    }
-    const ssize_t n = ::read(fd.get(), text.data() + done, text.size() - done);
+    // Past the size fstat gave (the end, or a file that grows while it is read, or one whose size
+    // the kernel does not know), look for more in a small buffer: making room by doubling the text
+    // first cost as much as reading a large file.
+    std::array<char, 4096> more;
+    const bool past_size = done == text.size();
+    const ssize_t n = past_size ? ::read(fd.get(), more.data(), more.size())
+                                : ::read(fd.get(), text.data() + done, text.size() - done);
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) throw InputFileError(path + ": cannot read the file (" + reason(errno) + ")");
     if (n == 0) break;
+    if (past_size) text.append(more.data(), static_cast<std::size_t>(n));
     done += static_cast<std::size_t>(n);
+    if (done > max_bytes) throw too_large(done);  // it grew while being read
   }
-  if (done > max_bytes) throw too_large(done);
   text.resize(done);
   return text;
 }

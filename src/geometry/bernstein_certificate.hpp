@@ -18,10 +18,29 @@ namespace curvemesh::geometry::detail {
 
 // ---------------------------------------------------------------------------------------------
 // A double with a rigorous bound on its distance to the exact result of the same computation
-// (running error analysis). kEps is twice the unit roundoff u, so |fl(x ∘ y) − x ∘ y| ≤ u |x ∘ y|
-// ≤ kEps |fl(x ∘ y)|. The bounds are themselves rounded; the comparisons below use twice the
-// bound, which covers that (its relative error is a few u, far below a factor 2). Assumes no
-// overflow or underflow: node coordinates between about 1e-70 and 1e70 in magnitude.
+// (running error analysis; Higham, Accuracy and Stability of Numerical Algorithms, 2nd ed., §3.3).
+//
+// Rounding (IEEE 754 binary64, round to nearest, gradual underflow; Higham §2.1–2.2): with u the
+// unit roundoff, an operation's result z rounds to fl(z) with |fl(z) − z| ≤ u |z| + η, where
+// η = 2^-1075 (half the smallest subnormal) is only ever needed by a product or a quotient: a sum
+// of two doubles is exact when it is subnormal or zero (Hauser, ACM TOPLAS 18(2), 1996). kEps is
+// twice u, so u |z| ≤ kEps |fl(z)|. Each operation's bound also holds DBL_MIN = 2^-1022, which
+// covers η (a product of two coordinates of 1e-170 rounds to 0, and kEps · 0 would claim no
+// error) and keeps every nonzero bound a normal number; only a result known to be exact (exact
+// operands, and a zero or subnormal sum, or a zero operand of a product or dividend) keeps the
+// bound 0, so an element whose coefficient is computed exactly as 0 is still decided.
+//
+// Propagation, for exact operands a, b known as â, b̂ with |a − â| ≤ e_a, |b − b̂| ≤ e_b:
+// |(a ± b) − (â ± b̂)| ≤ e_a + e_b and |ab − âb̂| ≤ |â| e_b + |b̂| e_a + e_a e_b; a quotient below.
+//
+// The bounds are themselves computed in doubles. Each operation's bound is at most eight
+// operations on non-negative terms, each losing at most a relative u, or, for a product that
+// underflows, at most η = u · DBL_MIN, no more than u of a bound that holds DBL_MIN; along a chain
+// of k operations the computed bound is therefore at least (1 − 8u)^k of the true one, above half
+// of it for any k below 10^14 (a certificate's chains are a few hundred operations long). So the
+// sign decisions below compare with twice the bound. Overflow makes a value or a bound infinite
+// or NaN, and then no comparison below holds: never a wrong decision, only none. Against node
+// coordinates above about 1e-150 in magnitude the DBL_MIN changes no decision.
 inline constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 struct ErrorBounded {
@@ -32,24 +51,35 @@ struct ErrorBounded {
   ErrorBounded& operator+=(const ErrorBounded& o);
 };
 
-inline ErrorBounded rounded(double v, double carried) {
-  return {v, carried + kEps * std::abs(v)};
+// A result v with the operands' propagated bound `carried`; `exact` when it is known exact.
+inline ErrorBounded rounded(double v, double carried, bool exact) {
+  return {v, exact ? 0.0 : carried + kEps * std::abs(v) + std::numeric_limits<double>::min()};
+}
+inline bool exact_operands(const ErrorBounded& a, const ErrorBounded& b) {
+  return a.error == 0 && b.error == 0;
+}
+inline bool zero_or_subnormal(double v) {
+  return std::abs(v) < std::numeric_limits<double>::min();
 }
 inline ErrorBounded operator+(const ErrorBounded& a, const ErrorBounded& b) {
-  return rounded(a.value + b.value, a.error + b.error);
+  const double v = a.value + b.value;
+  return rounded(v, a.error + b.error, exact_operands(a, b) && zero_or_subnormal(v));
 }
 inline ErrorBounded operator-(const ErrorBounded& a, const ErrorBounded& b) {
-  return rounded(a.value - b.value, a.error + b.error);
+  const double v = a.value - b.value;
+  return rounded(v, a.error + b.error, exact_operands(a, b) && zero_or_subnormal(v));
 }
 inline ErrorBounded operator*(const ErrorBounded& a, const ErrorBounded& b) {
   return rounded(a.value * b.value,
-                 std::abs(a.value) * b.error + std::abs(b.value) * a.error + a.error * b.error);
+                 std::abs(a.value) * b.error + std::abs(b.value) * a.error + a.error * b.error,
+                 exact_operands(a, b) && (a.value == 0 || b.value == 0));
 }
-// |a/b − â/b̂| ≤ (e_a + |â/b̂| e_b) / (|b̂| − e_b) when |b̂| > e_b.
+// |a/b − â/b̂| ≤ (e_a + |â/b̂| e_b) / (|b̂| − e_b) when |b̂| > e_b; the margin takes twice e_b, as
+// the comparisons do. The certificates divide by exact constants only (e_b = 0).
 inline ErrorBounded operator/(const ErrorBounded& a, const ErrorBounded& b) {
-  const double q = a.value / b.value, margin = std::abs(b.value) - b.error;
+  const double q = a.value / b.value, margin = std::abs(b.value) - 2 * b.error;
   if (!(margin > 0)) return {q, std::numeric_limits<double>::infinity()};
-  return rounded(q, (a.error + std::abs(q) * b.error) / margin);
+  return rounded(q, (a.error + std::abs(q) * 2 * b.error) / margin, exact_operands(a, b) && a.value == 0);
 }
 inline ErrorBounded& ErrorBounded::operator+=(const ErrorBounded& o) {
   return *this = *this + o;
@@ -133,6 +163,17 @@ struct Search {
 // Depth-first search for a sub-triangle with a non-positive corner, skipping those whose
 // coefficients are all positive (the polynomial is at least its smallest coefficient there, by
 // the convex hull property).
+//
+// On ErrorBounded coefficients, a verdict other than undecided is the verdict the same search on
+// the exact rational coefficients gives with the same options (what makes the double search a
+// filter for the exact one, as CGAL's filtered predicates are): every ErrorBounded decision is
+// the exact one where it is made, so the exact search skips every sub-triangle the double one
+// skips (and maybe more) and visits a subset of the same depth-first order, each sub-triangle
+// with no more counted before it. Positive: no corner of the exact search can be ≤ 0 on a
+// polynomial proved positive, and a depth or work limit it hits the double search hit too. Not
+// positive: the exact search cannot skip an ancestor of the sub-triangle whose corner the double
+// search found ≤ 0 (it would be positive there), so it reaches that corner unless it finds another
+// ≤ 0 first, and never hits the work limit on the way where the double search did not.
 template <int D, class T>
 Search certify(const Coefficients<D, T>& top, const JacobianCheckOptions& options) {
   Search s;

@@ -20,6 +20,58 @@ P3Nodes p3_straight_nodes(const Vec2& a, const Vec2& b, const Vec2& c) {
           third(b, c), third(c, b), third(c, a), third(a, c), (a + b + c) / 3};
 }
 
+namespace {
+
+// (w0 x0 + w1 x1 + w2 x2) / 3 rounded toward zero, for small integer weights w: mpq_get_d of the
+// exact rational, computed on integers. Each nonzero x is an integer M of 53 bits times 2^E;
+// with e the smallest such E, the sum is n 2^e for the integer n = Σ w M 2^(E − e). The integer
+// quotient of n 2^64 by 3, which has more than 53 bits (|n| ≥ 1), truncated to 53 bits by
+// mpz_get_d_2exp, is the real quotient truncated to 53 bits: at 2^62 and above every double is
+// an integer. The scaling by 2^(e − 64) is then exact unless the result is subnormal, where
+// ldexp would round to nearest: that case is left to mpq.
+double third_truncated(const std::array<int, 3>& w, const std::array<double, 3>& x) {
+  std::array<long, 3> m{};
+  std::array<int, 3> exponent{};
+  int e = std::numeric_limits<int>::max();
+  for (int k = 0; k < 3; ++k) {
+    int q = 0;
+    m[k] = w[k] ? static_cast<long>(std::ldexp(std::frexp(x[k], &q), 53)) : 0;
+    exponent[k] = q - 53;
+    if (m[k]) e = std::min(e, exponent[k]);
+  }
+  if (e == std::numeric_limits<int>::max()) return 0.0;
+  mpz_class n(0);
+  for (int k = 0; k < 3; ++k)
+    if (m[k]) n += mpz_class(m[k] * w[k]) << static_cast<mp_bitcnt_t>(exponent[k] - e);
+  if (n == 0) return 0.0;
+  n <<= 64;
+  mpz_tdiv_q_ui(n.get_mpz_t(), n.get_mpz_t(), 3);
+  long scale = 0;
+  const double d = mpz_get_d_2exp(&scale, n.get_mpz_t());  // |d| in [0.5, 1), toward zero
+  scale += e - 64;
+  if (scale - 1 < std::numeric_limits<double>::min_exponent - 1) {
+    mpq_class exact(0);
+    for (int k = 0; k < 3; ++k) exact += mpq_class(w[k]) * mpq_class(x[k]);
+    return mpq_class(exact / 3).get_d();
+  }
+  return std::ldexp(d, static_cast<int>(scale));
+}
+
+}  // namespace
+
+P3Nodes p3_straight_nodes_truncated(const Vec2& a, const Vec2& b, const Vec2& c) {
+  P3Nodes out;
+  // The corners are exact; + 0.0 turns −0 into +0, as a rational has no sign of zero.
+  const Vec2 zero = Vec2::Zero();
+  out[0] = a + zero, out[1] = b + zero, out[2] = c + zero;
+  for (int i = 3; i < 10; ++i) {
+    const int u3 = kP3ReferenceNodesTimes3[i][0], v3 = kP3ReferenceNodesTimes3[i][1];
+    const std::array<int, 3> w{3 - u3 - v3, u3, v3};
+    out[i] = Vec2(third_truncated(w, {a.x(), b.x(), c.x()}), third_truncated(w, {a.y(), b.y(), c.y()}));
+  }
+  return out;
+}
+
 std::array<Vec2, 3> p3_centre_candidates(const P3Nodes& p) {
   const Vec2 sum_corners = p[0] + p[1] + p[2];
   Vec2 sum_edges = Vec2::Zero();
@@ -121,6 +173,15 @@ JacobianCertificate certify_jacobian(const P3Nodes& nodes, const JacobianCheckOp
   return detail::certificate<4>(
       nodes, [](const auto& n) { return p3_jacobian_det_bernstein(n); },
       [](const auto& n, double u, double v) { return p3_jacobian_det(n, u, v); }, options);
+}
+
+JacobianVerdict certify_jacobian_linear(const Vec2& a, const Vec2& b, const Vec2& c) {
+  using detail::ErrorBounded;
+  const auto edge = [](double to, double from) { return ErrorBounded(to, 0) - ErrorBounded(from, 0); };
+  const ErrorBounded det = edge(b.x(), a.x()) * edge(c.y(), a.y()) - edge(b.y(), a.y()) * edge(c.x(), a.x());
+  if (detail::certainly_positive(det)) return JacobianVerdict::positive;
+  if (detail::certainly_nonpositive(det)) return JacobianVerdict::not_positive;
+  return JacobianVerdict::undecided;
 }
 
 }  // namespace curvemesh::geometry

@@ -51,6 +51,12 @@ Vec2 p3_reference_node(int i);
 // Nodes of the straight triangle a, b, c: edge nodes at thirds, centre at the centroid.
 P3Nodes p3_straight_nodes(const Vec2& a, const Vec2& b, const Vec2& c);
 
+// The same nodes computed exactly and each coordinate rounded toward zero, as mpq_class::get_d
+// rounds the rationals of p3_straight_nodes' exact map (the nodes on which `curvemesh check` has
+// always measured a linear element's scaled Jacobian), without rationals but where the result
+// would be subnormal.
+P3Nodes p3_straight_nodes_truncated(const Vec2& a, const Vec2& b, const Vec2& c);
+
 // Centres for the corner and edge nodes of `nodes` (its centre is not read), in the order the
 // curve stage tries them: the one that reproduces quadratic maps exactly (the map's cubic part as
 // small as the edges allow), the paper's (the average of the other nine nodes), the corners'
@@ -273,5 +279,11 @@ struct JacobianCertificate {
 // minus its bound). The nodes are first taken relative to node 0, so the bounds scale with the
 // element's size squared: the verdict does not depend on where the element is or on its scale.
 JacobianCertificate certify_jacobian(const P3Nodes& nodes, const JacobianCheckOptions& options = {});
+
+// A straight triangle a, b, c, i.e. the exact map of p3_straight_nodes: its 15 coefficients all
+// equal (b − a) × (c − a), so certify_jacobian_exact says positive when that is > 0 and
+// not_positive otherwise. The same sign in doubles with certify_jacobian's error bound: that
+// verdict when the bound decides it, undecided when it does not.
+JacobianVerdict certify_jacobian_linear(const Vec2& a, const Vec2& b, const Vec2& c);
 
 }  // namespace curvemesh::geometry

@@ -107,6 +107,40 @@ class Tokens {
   long line_;
 };
 
+// Node tag -> index in the file's order. Gmsh and curvemesh number the nodes 1 to N, so tags up to
+// a bound go to a table indexed by tag (a hash look-up per node of every element was a third of
+// reading a mesh); the bound keeps the table smaller than the text, whatever the tags (a node takes
+// at least 8 bytes of text); larger tags go to a hash map.
+class NodeIndex {
+ public:
+  explicit NodeIndex(std::size_t text_size) : table_limit_(static_cast<long long>(text_size / 8) + 1024) {}
+
+  // False if the tag is there already.
+  bool insert(long long tag, int index) {
+    if (tag < 0 || tag >= table_limit_) return others_.emplace(tag, index).second;
+    const auto at = static_cast<std::size_t>(tag);
+    if (at >= table_.size())
+      table_.resize(std::min(std::max(at + 1, 2 * table_.size()), static_cast<std::size_t>(table_limit_)),
+                    -1);
+    if (table_[at] >= 0) return false;
+    table_[at] = index;
+    return true;
+  }
+  // The index of a tag, or -1.
+  int find(long long tag) const {
+    if (tag < 0 || tag >= table_limit_) {
+      const auto found = others_.find(tag);
+      return found == others_.end() ? -1 : found->second;
+    }
+    return static_cast<std::size_t>(tag) < table_.size() ? table_[static_cast<std::size_t>(tag)] : -1;
+  }
+
+ private:
+  long long table_limit_;
+  std::vector<int> table_;                     // by tag; -1 where no node
+  std::unordered_map<long long, int> others_;  // lookups only
+};
+
 struct ElementKind {
   int dim;    // 0 point, 1 line, 2 triangle
   int order;  // 0 for points
@@ -136,7 +170,7 @@ std::optional<ElementKind> element_kind(long long type) {
 
 class Reader {
  public:
-  explicit Reader(std::string_view text) { split(text); }
+  explicit Reader(std::string_view text) : text_size_(text.size()), node_index_(text.size()) { split(text); }
 
   HighOrderMesh read() {
     const auto format = sections_.find("MeshFormat");
@@ -245,11 +279,16 @@ class Reader {
     t.expect_end();
   }
 
+  // Room for the nodes a header announces, as many as the text can hold (8 bytes a node at least).
+  void reserve_nodes(int announced) {
+    mesh_.nodes.reserve(std::min(static_cast<std::size_t>(announced), text_size_ / 8));
+  }
+
   void add_node(Tokens& t, long long tag) {
     const double x = t.real("x"), y = t.real("y"), z = t.real("z");
     if (z != 0)
       t.fail("node " + std::to_string(tag) + " has z = " + std::to_string(z) + ": not a planar mesh");
-    if (!node_index_.emplace(tag, static_cast<int>(mesh_.nodes.size())).second)
+    if (!node_index_.insert(tag, static_cast<int>(mesh_.nodes.size())))
       t.fail("node " + std::to_string(tag) + " is defined twice");
     if (mesh_.nodes.size() >= std::size_t(INT_MAX)) t.fail("too many nodes");
     mesh_.nodes.emplace_back(x, y);
@@ -259,6 +298,7 @@ class Reader {
     Tokens t(s);
     const int blocks = t.count("number of node blocks");
     const int total = t.count("number of nodes");
+    reserve_nodes(total);
     t.integer("minimum node tag");
     t.integer("maximum node tag");
     std::vector<long long> tags;
@@ -282,6 +322,7 @@ class Reader {
   void nodes22(const Section& s) {
     Tokens t(s);
     const int n = t.count("number of nodes");
+    reserve_nodes(n);
     for (int i = 0; i < n; ++i) add_node(t, t.positive("node tag"));
     t.expect_end();
   }
@@ -297,11 +338,11 @@ class Reader {
     scratch_.clear();
     for (int k = 0; k < kind->nodes; ++k) {
       const long long node = t.integer("node tag");
-      const auto found = node_index_.find(node);
-      if (found == node_index_.end())
+      const int found = node_index_.find(node);
+      if (found < 0)
         t.fail("element " + std::to_string(tag) + " refers to node " + std::to_string(node) +
                ", which $Nodes does not define");
-      scratch_.push_back(found->second);
+      scratch_.push_back(found);
     }
     if (kind->dim == 2) {
       if (triangle_order_ != 0 && triangle_order_ != kind->order)
@@ -386,11 +427,12 @@ class Reader {
     if (auto error = mesh_.structure_error()) throw MshError("the mesh read is inconsistent: " + *error);
   }
 
+  std::size_t text_size_;
   std::map<std::string, Section> sections_;
   int version_ = 0;
   // (dim, entity tag) -> its physical tags
   std::map<std::pair<long long, long long>, std::vector<int>> entity_physical_;
-  std::unordered_map<long long, int> node_index_;                   // node tag -> index; lookups only
+  NodeIndex node_index_;
   std::vector<int> scratch_;
   int triangle_order_ = 0, line_order_ = 0;
   HighOrderMesh mesh_;

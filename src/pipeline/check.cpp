@@ -48,18 +48,53 @@ geometry::P3Nodes to_double(const P3NodesT<mpq_class>& p) {
   return out;
 }
 
-// The exact verdict and the scaled Jacobian (in doubles) of element t. A quadratic element is
-// decided on its own degree-2 determinant, exactly on the rationals of its nodes as read; a linear
-// or cubic one as a P3 map (degree 4).
-std::pair<geometry::JacobianVerdict, double> certify_element(const io::HighOrderMesh& m, std::size_t t) {
+template <std::size_t N>
+std::array<Vec2, N> element_nodes(const io::HighOrderMesh& m, std::size_t t) {
+  const auto n = m.triangle(static_cast<int>(t));
+  std::array<Vec2, N> p;
+  for (std::size_t i = 0; i < N; ++i) p[i] = m.nodes[n[i]];
+  return p;
+}
+
+struct ElementCheck {
+  geometry::JacobianVerdict verdict;
+  double scaled_jacobian;
+  bool exact;  // decided with rationals
+};
+
+// Element t's verdict and scaled Jacobian (always in doubles). A quadratic element is decided on
+// its own degree-2 determinant, a linear or cubic one as a P3 map (degree 4), on the rationals of
+// its nodes as read. The double certificate decides first unless `exact`: its verdict, when it
+// has one, is the exact certificate's (bernstein_certificate.hpp, certify: a filter in the sense
+// of CGAL's filtered predicates); only an undecided element is decided again in rationals. A
+// linear element's sign is that of its corners' orientation (certify_jacobian_linear); its scaled
+// Jacobian is measured on its map as a P3 map, the rational nodes rounded toward zero as mpq
+// rounds them, which p3_straight_nodes_truncated gives without rationals.
+ElementCheck check_element(const io::HighOrderMesh& m, std::size_t t, bool exact) {
+  using geometry::JacobianVerdict;
+  if (m.order == 3) {
+    const auto p = element_nodes<10>(m, t);
+    const geometry::JacobianCertificate c = geometry::certify_jacobian(p);
+    if (!exact && c.verdict != JacobianVerdict::undecided) return {c.verdict, c.scaled_jacobian, false};
+    return {geometry::certify_jacobian_exact(p), c.scaled_jacobian, true};
+  }
   if (m.order == 2) {
-    const auto n = m.triangle(static_cast<int>(t));
-    geometry::P2Nodes p;
-    for (int i = 0; i < 6; ++i) p[i] = m.nodes[n[i]];
-    return {geometry::certify_jacobian_exact(geometry::to_exact(p)), geometry::certify_jacobian(p).scaled_jacobian};
+    const auto p = element_nodes<6>(m, t);
+    const geometry::JacobianCertificate c = geometry::certify_jacobian(p);
+    if (!exact && c.verdict != JacobianVerdict::undecided) return {c.verdict, c.scaled_jacobian, false};
+    return {geometry::certify_jacobian_exact(p), c.scaled_jacobian, true};
+  }
+  const auto x = element_nodes<3>(m, t);
+  if (!exact) {
+    const double scaled =
+        geometry::certify_jacobian(geometry::p3_straight_nodes_truncated(x[0], x[1], x[2])).scaled_jacobian;
+    const JacobianVerdict v = geometry::certify_jacobian_linear(x[0], x[1], x[2]);
+    if (v != JacobianVerdict::undecided) return {v, scaled, false};
+    return {geometry::certify_jacobian_exact(as_p3(m, t)), scaled, true};
   }
   const auto p = as_p3(m, t);
-  return {geometry::certify_jacobian_exact(p), geometry::certify_jacobian(to_double(p)).scaled_jacobian};
+  return {geometry::certify_jacobian_exact(p), geometry::certify_jacobian(to_double(p)).scaled_jacobian,
+          true};
 }
 
 // A point of line element `l` at s in [0, 1] (its nodes: the ends, then the inner ones in order).
@@ -88,16 +123,17 @@ Vec2 line_point(const io::HighOrderMesh& m, std::size_t l, double s) {
 
 }  // namespace
 
-MeshCheck check_mesh(const io::HighOrderMesh& m) {
+MeshCheck check_mesh(const io::HighOrderMesh& m, const CheckOptions& options) {
   MeshCheck out;
   out.order = m.order;
   out.triangles = static_cast<std::size_t>(m.triangle_count());
   double min_scaled = INFINITY;
   for (std::size_t t = 0; t < out.triangles; ++t) {
-    const auto [verdict, scaled] = certify_element(m, t);
-    out.invalid += verdict != geometry::JacobianVerdict::positive;
-    out.undecided += verdict == geometry::JacobianVerdict::undecided;
-    min_scaled = std::min(min_scaled, scaled);
+    const ElementCheck e = check_element(m, t, options.exact);
+    out.invalid += e.verdict != geometry::JacobianVerdict::positive;
+    out.undecided += e.verdict == geometry::JacobianVerdict::undecided;
+    out.exact_fallbacks += e.exact;
+    min_scaled = std::min(min_scaled, e.scaled_jacobian);
   }
   out.min_scaled_jacobian = out.triangles ? min_scaled : 0.0;
   return out;

@@ -1,8 +1,8 @@
 #pragma once
 // The certification of a finished mesh as a file holds it (`curvemesh check`, and the public
-// API's check): every element's Jacobian determinant decided on the whole element with exact
-// rationals, and the distance from the primary lines to the drawing's curves. It takes any 2D
-// triangle mesh of order 1, 2 or 3, ours or another program's.
+// API's check): every element's Jacobian determinant decided on the whole element as exact
+// rationals decide it, and the distance from the primary lines to the drawing's curves. It takes
+// any 2D triangle mesh of order 1, 2 or 3, ours or another program's.
 #include <cstddef>
 
 #include "io/high_order_mesh.hpp"
@@ -13,15 +13,24 @@ namespace curvemesh::pipeline {
 struct MeshCheck {
   int order = 0;
   std::size_t triangles = 0;
-  std::size_t invalid = 0;         // elements not certified positive
-  std::size_t undecided = 0;       // of those, the ones the exact test could not decide
-  double min_scaled_jacobian = 0;  // over the elements (0 for a mesh without any)
+  std::size_t invalid = 0;          // elements not certified positive
+  std::size_t undecided = 0;        // of those, the ones the exact test could not decide
+  double min_scaled_jacobian = 0;   // over the elements (0 for a mesh without any)
+  std::size_t exact_fallbacks = 0;  // elements decided with rationals (all of them when exact)
 };
 
-// Each element's det J decided with certify_jacobian_exact on the rationals of its nodes: a P2
-// element's degree-2 form, a P1 or P3 element's map written exactly as a P3 map (a P1 map
-// evaluated at the ten P3 reference nodes); the scaled Jacobian in doubles.
-MeshCheck check_mesh(const io::HighOrderMesh& mesh);
+struct CheckOptions {
+  // Decide every element with rationals, without the double certificate first: the independent
+  // check of the filtered one, whose verdicts are the same.
+  bool exact = false;
+};
+
+// Each element's det J decided as certify_jacobian_exact decides it on the rationals of its
+// nodes: a P2 element's degree-2 form, a P1 or P3 element's map written exactly as a P3 map (a P1
+// map evaluated at the ten P3 reference nodes). The double certificate with its rigorous error
+// bound decides first, and rationals only what it leaves undecided (unless options.exact); the
+// scaled Jacobian in doubles.
+MeshCheck check_mesh(const io::HighOrderMesh& mesh, const CheckOptions& options = {});
 
 struct FeatureDistance {
   std::size_t primary_lines = 0;  // lines in the physical group named "primary"

@@ -241,10 +241,18 @@ def test_check(order, examples, run_cli, tmp_path):
     cli = json.loads(run_cli("check", tmp_path / "m.msh", "--json").stdout)
     path = tmp_path / "m.msh"
     for report in [curvemesh.check(m), curvemesh.check(path), curvemesh.check(str(path))]:
-        assert set(report) == {"order", "triangles", "invalid", "undecided", "min_scaled_jacobian"}
+        assert set(report) == {"order", "triangles", "invalid", "undecided", "min_scaled_jacobian", "exact_fallbacks"}
         assert report["order"] == order and report["invalid"] == 0 and report["undecided"] == 0
         assert report["triangles"] == len(m.triangles)
         for key in report:
+            assert report[key] == cli[key]
+    # Every element in rationals: the same verdict and figure as the command's --exact.
+    cli_exact = json.loads(run_cli("check", tmp_path / "m.msh", "--json", "--exact").stdout)
+    for report in [curvemesh.check(m, exact=True), curvemesh.check(path, exact=True)]:
+        assert report["exact_fallbacks"] == report["triangles"] == len(m.triangles)
+        for key in report:
+            assert report[key] == cli_exact[key]
+        for key in ("order", "triangles", "invalid", "undecided", "min_scaled_jacobian"):
             assert report[key] == cli[key]
     with pytest.raises(ValueError):
         curvemesh.check(tmp_path / "missing.msh")

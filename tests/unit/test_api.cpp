@@ -421,6 +421,16 @@ TEST(Api, CheckCertifiesTheMeshAndItsFile) {
     EXPECT_EQ(f.triangles, r.triangles);
     EXPECT_EQ(f.invalid, 0u);
     EXPECT_EQ(f.min_scaled_jacobian, r.min_scaled_jacobian);
+    EXPECT_EQ(f.exact_fallbacks, r.exact_fallbacks);
+    // Every element in rationals: the same verdict and figure.
+    for (const CheckReport& e : {check(m, {.exact = true}), check_file(dir / "m.msh", {.exact = true})}) {
+      EXPECT_EQ(e.order, r.order);
+      EXPECT_EQ(e.triangles, r.triangles);
+      EXPECT_EQ(e.invalid, 0u);
+      EXPECT_EQ(e.undecided, 0u);
+      EXPECT_EQ(e.min_scaled_jacobian, r.min_scaled_jacobian);
+      EXPECT_EQ(e.exact_fallbacks, e.triangles);
+    }
   }
 }
 
@@ -453,6 +463,8 @@ TEST(Api, CheckFileFindsAnInvertedElement) {
   EXPECT_EQ(folded.triangles, 1u);
   EXPECT_EQ(folded.invalid, 1u);
   EXPECT_LT(folded.min_scaled_jacobian, 0);
+  EXPECT_EQ(folded.exact_fallbacks, 0u);  // folded far beyond rounding: the doubles decide
+  EXPECT_EQ(check_file(dir / "folded.msh", {.exact = true}).invalid, 1u);
   const CheckReport straight = check_file(dir / "straight.msh");
   EXPECT_EQ(straight.invalid, 0u);
   EXPECT_GT(straight.min_scaled_jacobian, 0.99);

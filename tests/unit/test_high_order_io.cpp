@@ -193,6 +193,29 @@ TEST(HighOrderMsh, ReadsOtherWritersFiles) {
   EXPECT_TRUE(q.physical_names.empty());
 }
 
+// Small tags are looked up in a table, tags beyond what the text could number in a hash map: a
+// mesh mixing both reads the same, and a tag defined twice is refused either way.
+TEST(HighOrderMsh, NodeTagsOfAnySizeAreFound) {
+  const std::string v22 =
+      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
+      "$Nodes\n4\n1000000000000 1 0 0\n2 0 0 0\n9223372036854775807 0 1 0\n2000 1 1 0\n$EndNodes\n"
+      "$Elements\n2\n1 2 0 2 1000000000000 2000\n2 2 0 2 2000 9223372036854775807\n$EndElements\n";
+  const HighOrderMesh m = parse_msh(v22);
+  ASSERT_EQ(m.nodes.size(), 4u);
+  EXPECT_EQ(m.triangles, (std::vector<int>{1, 0, 3, 1, 3, 2}));
+  for (const std::string twice : {"2", "1000000000000"}) {
+    const std::string text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n" + twice +
+                             " 0 0 0\n3 1 0 0\n" + twice + " 0 1 0\n$EndNodes\n$Elements\n0\n$EndElements\n";
+    try {
+      parse_msh(text);
+      ADD_FAILURE() << "node " << twice << " defined twice was read";
+    } catch (const MshError& e) {
+      EXPECT_NE(std::string(e.what()).find("node " + twice + " is defined twice"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 std::string error_of(const std::string& text) {
   try {
     parse_msh(text);

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <random>
@@ -285,6 +287,118 @@ TEST(P3Certify, DoubleAgreesWithExactAtAnyScale) {
   EXPECT_GT(counts[static_cast<int>(JacobianVerdict::not_positive)], 300);
   EXPECT_LT(counts[static_cast<int>(JacobianVerdict::undecided)], 5);
   EXPECT_GT(subdivided, 100);  // many were decided only below the element's own coefficients
+}
+
+// The double certificate is a filter for the exact one (bernstein_certificate.hpp): a verdict it
+// reaches is the exact search's with the same limits, even limits small enough that both searches
+// often stop undecided.
+TEST(P3Certify, DecidedVerdictIsTheExactOneUnderTheSameLimits) {
+  const P3Nodes reference = arc_element(0.17);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> noise(-0.03, 0.03);
+  int decided = 0, undecided = 0;
+  for (int trial = 0; trial < 1500; ++trial) {
+    P3Nodes n = reference;
+    for (auto& p : n) p += Vec2(noise(rng), noise(rng));
+    const JacobianCheckOptions limits{.max_depth = 1 + trial % 3, .max_subtriangles = 3 + trial % 7};
+    const JacobianVerdict verdict = certify_jacobian(n, limits).verdict;
+    if (verdict == JacobianVerdict::undecided) {
+      ++undecided;
+      continue;
+    }
+    ++decided;
+    ASSERT_EQ(certify_jacobian_exact(n, limits), verdict) << "trial " << trial;
+  }
+  EXPECT_GT(decided, 300);
+  EXPECT_GT(undecided, 100);  // the limits bite
+}
+
+// Products of coordinates of 1e-170 underflow: the bound must then leave the element undecided,
+// never call a valid element not positive (its coefficients round to 0). Coordinates of 1e200
+// overflow: undecided too.
+TEST(P3Certify, UnderflowAndOverflowLeaveTheElementUndecided) {
+  const P3Nodes n = arc_element(0.1);
+  ASSERT_EQ(certify_jacobian_exact(n), JacobianVerdict::positive);
+  for (double scale : {1e-170, 1e-300, 1e200, 1e300}) {
+    const P3Nodes m = transformed(n, scale, Vec2::Zero());
+    EXPECT_EQ(certify_jacobian(m).verdict, JacobianVerdict::undecided) << scale;
+    EXPECT_EQ(certify_jacobian_exact(m), JacobianVerdict::positive) << scale;
+  }
+  for (double scale : {1e-100, 1e100})
+    EXPECT_EQ(certify_jacobian(transformed(n, scale, Vec2::Zero())).verdict, JacobianVerdict::positive)
+        << scale;
+}
+
+// A straight triangle's sign: the exact certificate of its P3 map where the doubles decide, and
+// undecided where they cannot (collinear corners, or within rounding of it; underflow).
+TEST(P3Linear, DecidesAsTheExactCertificateOrNotAtAll) {
+  const auto exact_verdict = [](const Vec2& a, const Vec2& b, const Vec2& c) {
+    P3NodesT<mpq_class> n;
+    const std::array<PointT<mpq_class>, 3> x{{{a.x(), a.y()}, {b.x(), b.y()}, {c.x(), c.y()}}};
+    for (int i = 0; i < 10; ++i) {
+      const mpq_class u(kP3ReferenceNodesTimes3[i][0], 3), v(kP3ReferenceNodesTimes3[i][1], 3);
+      for (int k = 0; k < 2; ++k) n[i][k] = (1 - u - v) * x[0][k] + u * x[1][k] + v * x[2][k];
+    }
+    return certify_jacobian_exact(n);
+  };
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  int undecided = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Vec2 a(unit(rng), unit(rng)), b(unit(rng), unit(rng));
+    // Every fourth triangle nearly collinear: c on the line ab, moved by a few units in the last place.
+    Vec2 c(unit(rng), unit(rng));
+    if (trial % 4 == 0) c = a + 3 * (b - a) + Vec2(0, (trial % 3 - 1) * 1e-16);
+    const JacobianVerdict verdict = certify_jacobian_linear(a, b, c);
+    undecided += verdict == JacobianVerdict::undecided;
+    if (verdict != JacobianVerdict::undecided) {
+      ASSERT_EQ(exact_verdict(a, b, c), verdict) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(undecided, 100);
+  EXPECT_EQ(certify_jacobian_linear(Vec2(0, 0), Vec2(1, 1), Vec2(3, 3)), JacobianVerdict::undecided);
+  EXPECT_EQ(exact_verdict(Vec2(0, 0), Vec2(1, 1), Vec2(3, 3)), JacobianVerdict::not_positive);
+  EXPECT_EQ(certify_jacobian_linear(Vec2(0, 0), Vec2(1e-170, 0), Vec2(0, 1e-170)),
+            JacobianVerdict::undecided);
+  EXPECT_EQ(certify_jacobian_linear(Vec2(0, 0), Vec2(0, 1), Vec2(1, 0)), JacobianVerdict::not_positive);
+  EXPECT_EQ(certify_jacobian_linear(Vec2(1e8, 1e8), Vec2(1e8 + 1, 1e8), Vec2(1e8, 1e8 + 1)),
+            JacobianVerdict::positive);
+}
+
+// The straight triangle's P3 nodes rounded toward zero are those of its exact map rounded by
+// mpq_get_d, bit for bit: coordinates of any sign, of exponents far apart, zero, subnormal, and
+// results in the subnormal range.
+TEST(P3Straight, TruncatedNodesAreTheRationalNodesAsGmpRoundsThem) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> mantissa(0.5, 1);
+  std::uniform_int_distribution<int> exponent(-1074, 1015), near(-5, 5), pick(0, 9);
+  const auto coordinate = [&](int around) {
+    switch (pick(rng)) {
+      case 0:
+        return pick(rng) % 2 ? 0.0 : -0.0;
+      case 1:
+        return std::ldexp(mantissa(rng), -1060);  // subnormal results
+      case 2:
+        return std::ldexp(mantissa(rng), exponent(rng));
+      default:
+        return (pick(rng) % 2 ? -1 : 1) * std::ldexp(mantissa(rng), around + near(rng));
+    }
+  };
+  for (int trial = 0; trial < 20000; ++trial) {
+    const int around = trial % 2 ? exponent(rng) : near(rng);
+    const Vec2 a(coordinate(around), coordinate(around)), b(coordinate(around), coordinate(around)),
+        c(coordinate(around), coordinate(around));
+    const P3Nodes ours = p3_straight_nodes_truncated(a, b, c);
+    for (int i = 0; i < 10; ++i) {
+      const mpq_class u(kP3ReferenceNodesTimes3[i][0], 3), v(kP3ReferenceNodesTimes3[i][1], 3);
+      for (int k = 0; k < 2; ++k) {
+        const mpq_class exact = (1 - u - v) * mpq_class(a[k]) + u * mpq_class(b[k]) + v * mpq_class(c[k]);
+        const double expected = exact.get_d();
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(ours[i][k]), std::bit_cast<std::uint64_t>(expected))
+            << "trial " << trial << " node " << i << ": " << ours[i][k] << " against " << expected;
+      }
+    }
+  }
 }
 
 }  // namespace
