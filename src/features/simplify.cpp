@@ -31,6 +31,18 @@ class PointGrid {
         if (const auto it = cells_.find(key(cx + dx, cy + dy)); it != cells_.end())
           for (const int id : it->second) visit(id);
   }
+  // near() over the ids for which gone(id) is false, dropping the others from the grid for good:
+  // a cluster's ends, once placed, are not visited again by each of its later neighbours.
+  template <class Gone, class F>
+  void near_pruning(const Vec2& p, Gone&& gone, F&& visit) {
+    const long long cx = cell_of(p.x()), cy = cell_of(p.y());
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        if (const auto it = cells_.find(key(cx + dx, cy + dy)); it != cells_.end()) {
+          std::erase_if(it->second, gone);
+          for (const int id : it->second) visit(id);
+        }
+  }
 
  private:
   long long cell_of(double v) const { return static_cast<long long>(std::floor(v / cell_)); }
@@ -51,27 +63,13 @@ struct SegmentLess {
   }
 };
 
-}  // namespace
-
-std::vector<Segment> simplify_secondary(const Discretized& d, const Lengths& len) {
-  // Unique secondary endpoints, in first-seen order.
-  std::map<Vec2, int, Vec2Less> ids;
-  std::vector<Vec2> ends;
-  auto id_of = [&](const Vec2& p) {
-    const auto [it, inserted] = ids.emplace(p, static_cast<int>(ends.size()));
-    if (inserted) ends.push_back(p);
-    return it->second;
-  };
-  std::vector<std::pair<int, int>> secondary;  // endpoint ids per secondary piece
-  std::vector<int> piece_of;
-  for (int i = 0; i < static_cast<int>(d.pieces.size()); ++i) {
-    const Piece& p = d.pieces[i];
-    if (p.kind != Kind::secondary) continue;
-    secondary.emplace_back(id_of(p.a), id_of(p.b));
-    piece_of.push_back(i);
-  }
-  if (secondary.empty()) return {};
+// Where each secondary end goes (`ends` unique): to the nearest primary vertex within ε − μ, else
+// to the barycentre of its greedy cluster of radius (ε − μ)/2 (paper §4: secondary curves only
+// need to stay within ε, so their nearly coincident ends are merged).
+std::vector<Vec2> end_targets(const std::vector<Vec2>& ends, const Discretized& d, const Lengths& len) {
   const double budget = std::max(0.0, len.epsilon - len.mu);  // how far an endpoint may move
+  // None (ε ≤ μ): every end stays, and a grid of cells of no size would hold every end in one.
+  if (budget <= 0) return ends;
 
   // Primary vertices are fixed: snap to them first.
   PointGrid primary_grid(budget);
@@ -104,16 +102,42 @@ std::vector<Segment> simplify_secondary(const Discretized& d, const Lengths& len
   for (std::size_t k = 0; k < ends.size(); ++k) {
     if (placed[k]) continue;
     std::vector<int> members;
-    grid.near(ends[k], [&](int id) {
-      count();
-      if (!placed[id] && (ends[id] - ends[k]).norm() <= 0.5 * budget) members.push_back(id);
-    });
+    grid.near_pruning(
+        ends[k], [&](int id) { return placed[id] != 0; },
+        [&](int id) {
+          count();
+          if ((ends[id] - ends[k]).norm() <= 0.5 * budget) members.push_back(id);
+        });
     std::sort(members.begin(), members.end());
     Vec2 sum = Vec2::Zero();
     for (const int m : members) sum += ends[m];
     const Vec2 centre = sum / double(members.size());
     for (const int m : members) target[m] = centre, placed[m] = 1;
   }
+  return target;
+}
+
+}  // namespace
+
+std::vector<Segment> simplify_secondary(const Discretized& d, const Lengths& len) {
+  // Unique secondary endpoints, in first-seen order.
+  std::map<Vec2, int, Vec2Less> ids;
+  std::vector<Vec2> ends;
+  auto id_of = [&](const Vec2& p) {
+    const auto [it, inserted] = ids.emplace(p, static_cast<int>(ends.size()));
+    if (inserted) ends.push_back(p);
+    return it->second;
+  };
+  std::vector<std::pair<int, int>> secondary;  // endpoint ids per secondary piece
+  std::vector<int> piece_of;
+  for (int i = 0; i < static_cast<int>(d.pieces.size()); ++i) {
+    const Piece& p = d.pieces[i];
+    if (p.kind != Kind::secondary) continue;
+    secondary.emplace_back(id_of(p.a), id_of(p.b));
+    piece_of.push_back(i);
+  }
+  if (secondary.empty()) return {};
+  const std::vector<Vec2> target = end_targets(ends, d, len);
 
   std::vector<Segment> out;
   std::map<std::pair<Vec2, Vec2>, int, SegmentLess> seen;  // -> index in out

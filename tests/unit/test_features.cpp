@@ -211,6 +211,25 @@ TEST(Features, WithoutFeaturesEveryCurveIsSecondaryAndKeptWithinEpsilon) {
                 f.lengths.epsilon);
 }
 
+// With ε = μ no secondary end may move (ε − μ is how far one may): thousands of short curves in a
+// drawing a few units wide are kept where they are, and their ends are not paired with one another
+// (in cells of no size, every end would meet every other, beyond the limit on such pairs).
+TEST(Features, NoEndMovesWhenEpsilonIsMu) {
+  std::vector<CubicBezier> dashes;
+  for (int i = 0; i < 80; ++i)
+    for (int j = 0; j < 80; ++j) dashes.push_back(CubicBezier::line({0.025 * i, 0.025 * j}, {0.025 * i + 0.01, 0.025 * j}));
+  const svg::FeatureSoup soup = soup_of(dashes);
+  pipeline::Parameters p;
+  p.features = false;
+  p.epsilon_rel = p.mu_rel;
+  p.limits.max_triangles = 1000;  // 8,000 pairs of ends allowed: all 12,800 ends in a few cells are 10^8
+  const auto f = process(soup, p);
+  ASSERT_GE(f.segments.size(), dashes.size());
+  for (const auto& seg : f.segments)
+    for (const Vec2& end : {seg.a, seg.b})
+      EXPECT_EQ(geometry::closest_point(soup.curves[seg.curve].bezier, end).distance, 0.0) << end.transpose();
+}
+
 TEST(Features, DegenerateAndStraightCurves) {
   const auto f = process(soup_of({CubicBezier::line({0, 0}, {100, 100}),
                                             CubicBezier({50, 10}, {50 + 1e-12, 10}, {50, 10}, {50, 10}),
