@@ -8,7 +8,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   # libraries
   libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
-  libpugixml-dev libcli11-dev nlohmann-json3-dev libtbb-dev libsuitesparse-dev libpng-dev libhdf5-dev
+  libpugixml-dev libcli11-dev nlohmann-json3-dev libtbb-dev libsuitesparse-dev libpng-dev libhdf5-dev zlib1g-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # fuzzing (libFuzzer with ASan/UBSan)

@@ -122,7 +122,8 @@ class CURVEMESH_API Mesh {
   std::shared_ptr<const Impl> impl_;
 };
 
-// Meshes an SVG file (or a Triangle .poly file: points and segments, all secondary).
+// Meshes an SVG file (gzip-compressed too, .svgz: told by its gzip header) or a Triangle .poly
+// file (points and segments, all secondary).
 CURVEMESH_API Mesh mesh_file(const std::string& path, const Parameters& parameters = {});
 // Meshes SVG text; `name` is what messages call it.
 CURVEMESH_API Mesh mesh_svg(const std::string& svg_text, const Parameters& parameters = {},

@@ -348,8 +348,9 @@ def _is_svg_text(svg):
 def mesh(svg, **options):
     """Meshes a drawing and returns a Mesh.
 
-    `svg` is a path (str or os.PathLike such as pathlib.Path) to an SVG file (or a Triangle
-    .poly file), or SVG text: a str that starts with "<" after leading white space. `options`
+    `svg` is a path (str or os.PathLike such as pathlib.Path) to an SVG file (gzip-compressed
+    too, .svgz; or a Triangle .poly file), or SVG text: a str that starts with "<" after leading
+    white space. `options`
     are the command line's long options with "_" for "-":
 
 {options}

@@ -28,13 +28,18 @@ bool has_extension(const fs::path& p, std::string_view ext) {
   return e == ext;
 }
 
-// Every *.svg below `root`; outputs mirror the folders below it.
+// A drawing by its name: .svg, or .svgz (gzip-compressed).
+bool is_drawing(const fs::path& p) {
+  return has_extension(p, ".svg") || has_extension(p, ".svgz");
+}
+
+// Every *.svg and *.svgz below `root`; outputs mirror the folders below it.
 void add_directory(const fs::path& root, std::vector<Drawing>& out) {
   std::error_code ec;
   fs::recursive_directory_iterator it(root, fs::directory_options::skip_permission_denied, ec);
   for (; !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
     std::error_code regular;
-    if (has_extension(it->path(), ".svg") && it->is_regular_file(regular))
+    if (is_drawing(it->path()) && it->is_regular_file(regular))
       out.push_back({it->path().lexically_normal().string(), it->path().lexically_relative(root), {}, {}});
   }
   if (ec)
@@ -101,7 +106,7 @@ Inputs expand_inputs(const std::vector<std::string>& inputs) {
     if (!fs::exists(st)) throw BatchError(kUsage, "curvemesh: " + input + ": no such file or folder");
     if (fs::is_directory(st))
       add_directory(p, out);
-    else if (has_extension(p, ".svg") || has_extension(p, ".poly"))
+    else if (is_drawing(p) || has_extension(p, ".poly"))
       out.push_back({p.string(), p.filename(), {}, {}});
     else {
       add_list(p, out);
@@ -123,8 +128,8 @@ Inputs expand_inputs(const std::vector<std::string>& inputs) {
   return {std::move(unique), std::move(lists)};
 }
 
-// Output names. One folder's drawings never collide, but two inputs can (a.svg from two folders
-// given as files, x.svg beside x.poly): those get a suffix hashed from their own path, not from
+// Output names. Two inputs can collide (a.svg from two folders given as files, x.svg beside x.poly
+// or x.svgz): those get a suffix hashed from their own path, not from
 // their position or the order of the inputs. Names are assigned on the whole sorted list, before
 // sharding, so a resumed or sharded run finds the same files.
 void assign_outputs(std::vector<Drawing>& drawings, const fs::path& output_dir) {

@@ -134,7 +134,7 @@ Runner add_batch_command(CLI::App& app) {
       "of the drawings that finished and ends by that signal; run it again to finish. Exit 0 when every "
       "drawing is ok or skipped, 1 when any failed, 2 on a usage error.");
   cmd->add_option("inputs", args->inputs,
-                  "drawings to mesh: SVG or .poly files, folders (every *.svg below them, outputs mirroring "
+                  "drawings to mesh: SVG (.svg, .svgz) or .poly files, folders (every *.svg and *.svgz below them, outputs mirroring "
                   "their folders), or list files (any other file: one path per line, '#' starts a comment, "
                   "relative paths are relative to the list's folder). The list is sorted by path and each "
                   "file is meshed once")

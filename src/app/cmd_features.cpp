@@ -61,7 +61,7 @@ Runner add_features_command(CLI::App& app) {
       "Read an SVG drawing into a soup of cubic Bézier curves and isolated points, in the root element's "
       "user space (viewBox units, y down), and write it as JSON (and optionally as an SVG drawing). "
       "With --processed, also run feature processing (paper §4): primary sections, secondary segments.");
-  cmd->add_option("input", args->input, "SVG file to read")->required();
+  cmd->add_option("input", args->input, "SVG file to read (gzip-compressed too: .svgz)")->required();
   cmd->add_option("-o,--output", args->output_json, "JSON file to write (keys: bbox, curves, points, warnings)")
       ->required();
   cmd->add_option("--svg", args->output_svg,

@@ -165,7 +165,7 @@ Runner add_mesh_command(CLI::App& app) {
       "written, none is left. Exit codes: 0 success, 1 invalid input, a limit reached (see the --max-* "
       "options) or an unwritable output, 2 usage error (also an output that is the input, or two outputs "
       "naming one file), 3 internal failure (a mesh that could not be certified; nothing is written).");
-  cmd->add_option("input", args->input, "SVG or .poly file to mesh")->required();
+  cmd->add_option("input", args->input, "SVG file (gzip-compressed too: .svgz) or .poly file to mesh")->required();
   cmd->add_option("-o,--output", args->output_msh, "Gmsh .msh file to write")->required();
   cmd->add_option(
       "--svg", args->output_svg,

@@ -31,12 +31,6 @@ std::string kind_of(mode_t mode) {
   return "not a regular file";
 }
 
-std::string mebibytes(std::uint64_t bytes) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g MiB", double(bytes) / (1024.0 * 1024.0));
-  return text;
-}
-
 // A file descriptor closed when it goes out of scope.
 class Descriptor {
  public:
@@ -115,6 +109,12 @@ void write_in_place(const std::string& path, std::string_view content) {
 }
 
 }  // namespace
+
+std::string mebibytes(std::uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g MiB", double(bytes) / (1024.0 * 1024.0));
+  return text;
+}
 
 std::string read_input_file(const std::string& path, std::uint64_t max_bytes, const std::string& limit_option) {
   Descriptor fd(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC));

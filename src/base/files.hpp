@@ -25,6 +25,9 @@ class OutputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// `bytes` as the messages about sizes say it ("64 MiB").
+std::string mebibytes(std::uint64_t bytes);
+
 // The whole of a regular file of at most `max_bytes` bytes (beyond it, the message names
 // `limit_option`, the option that raises the limit, when there is one). Opened without blocking (a FIFO is refused,
 // not waited on) and read through the descriptor that was checked.

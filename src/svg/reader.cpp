@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "base/files.hpp"
+#include "base/gzip.hpp"
 #include "base/text.hpp"
 #include "svg/drawing_size.hpp"
 #include "svg/entities.hpp"
@@ -912,6 +913,9 @@ FeatureSoup read_svg_file(const std::string& path, const ReadOptions& options) {
   std::string text;
   try {
     text = base::read_input_file(path, options.max_input_bytes, "--max-input-mb");
+    // A compressed drawing (.svgz) is told by its gzip header, whatever its name, as librsvg
+    // tells it; the limit holds for the drawing decompressed.
+    if (base::is_gzip(text)) text = base::gunzip(text, options.max_input_bytes, path, "--max-input-mb");
   } catch (const base::InputFileError& e) {
     throw input_error(e, path);
   }
