@@ -324,7 +324,7 @@ void Builder::coarsen() {
   mesh::Constraints relaxed = c_;
   relaxed.max_turning = std::numbers::pi;
   const mesh::CollapseTest short_new_edges = [&](int from, int to) {
-    return mesh::collapse_keeps_edges_short(m, from, to, [&](int, int) { return 1.25 * l; });  // 5/3 of l
+    return mesh::collapse_keeps_edges_short(m, from, to, [&](int, int) { return mesh::kCoarseningScale * l; });
   };
   const auto curved = [&](int a, int b) {
     const auto it = curved_.find(mesh::edge_key(a, b));

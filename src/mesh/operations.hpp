@@ -47,14 +47,23 @@ bool collapse_allowed_by_tags(const TriMesh& mesh, const Constraints& constraint
 // ends a collapse changed may ask it for every edge before the pass.
 bool collapse_allowed_by_kind(const TriMesh& mesh, int from, int to);
 
-// TetWild's rule for collapses: no new edge longer than 4/3 of the target, or the split and
-// collapse passes undo each other forever. target(to, w) is the target of the new edge (to, w);
+// TetWild's bounds on an edge's length, as multiples of its target length, which the paper's §4.1
+// loop takes from TetWild: split above 4/3, collapse below 4/5, and no collapse may make an edge
+// longer than 4/3, or the split and collapse passes undo each other forever.
+inline constexpr double kSplitAbove = 4.0 / 3.0;
+inline constexpr double kCollapseBelow = 0.8;
+// The coarsenings (after the §4.1 loop, and the curve stage's along the curves) collapse against
+// 1.25 times the target: no new edge longer than 5/3 of it (kSplitAbove × 1.25).
+inline constexpr double kCoarseningScale = 1.25;
+
+// TetWild's rule for collapses: no new edge longer than kSplitAbove times the target, or the split
+// and collapse passes undo each other forever. target(to, w) is the target of the new edge (to, w);
 // a caller passes a larger one to bound the edges at another multiple. For collapse_edge's test.
 template <class Target>
 bool collapse_keeps_edges_short(const TriMesh& m, int from, int to, const Target& target) {
   for (int t : m.triangles_of(from))  // a neighbour seen twice is checked twice: no harm, no sorting
     for (int w : m.triangle(t))
-      if (w != from && w != to && (m.point(w) - m.point(to)).norm() > 4.0 / 3.0 * target(to, w)) return false;
+      if (w != from && w != to && (m.point(w) - m.point(to)).norm() > kSplitAbove * target(to, w)) return false;
   return true;
 }
 

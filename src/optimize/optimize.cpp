@@ -291,7 +291,7 @@ void coarsen(TriMesh& m, const mesh::Constraints& c, const Options& o, Stats& s)
     return worst;
   };
   const mesh::CollapseTest short_enough = [&](int from, int to) {
-    return mesh::collapse_keeps_edges_short(m, from, to, [&](int, int) { return 1.25 * target; });  // 5/3 of it
+    return mesh::collapse_keeps_edges_short(m, from, to, [&](int, int) { return mesh::kCoarseningScale * target; });
   };
   // A collapse: every new triangle at most max(stop energy, the worst it replaces), as in the
   // loop. In the curved pipeline it is also taken back when a triangle it leaves is above the
@@ -439,7 +439,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
     long changes = 0;  // splits and collapses: the sizing work done in this iteration
     // Split long edges, longest first.
     {
-      auto edges = edges_where(m, [&](const Edge& e) { return !(e.length <= 4.0 / 3.0 * edge_target(e.a, e.b)); });
+      auto edges = edges_where(m, [&](const Edge& e) { return !(e.length <= mesh::kSplitAbove * edge_target(e.a, e.b)); });
       // Each split adds two triangles (one on the box's side): refused before the mesh grows.
       base::check_triangles(std::size_t(m.triangle_count()) + 2 * edges.size(), o.max_triangles,
                             "to meet the edge length, " + std::to_string(edges.size()) + " edges would be split");
@@ -461,7 +461,7 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
       // of whose ends may move is not sorted (at 16,000 curves, half the refusals), and a
       // direction the kinds refuse is not tried.
       const std::vector<Edge> edges =
-          collapse_candidates(m, [&](int a, int b) { return 0.8 * edge_target(a, b); }, [](int, int) { return true; });
+          collapse_candidates(m, [&](int a, int b) { return mesh::kCollapseBelow * edge_target(a, b); }, [](int, int) { return true; });
       std::vector<char> touched(m.vertex_count(), 0);
       // The length test after the tests on tags and curves: they refuse most collapses (at 16,000
       // curves, every edge is shorter than the target, and most are on or next to a curve), and
