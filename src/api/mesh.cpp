@@ -1,8 +1,6 @@
 // curvemesh::Mesh: the arrays of a finished mesh, and writing it with the command line's writers.
 #include <algorithm>
 #include <cctype>
-#include <set>
-#include <utility>
 
 #include "api/mesh_impl.hpp"
 #include "base/files.hpp"
@@ -42,21 +40,6 @@ std::string extension(const std::string& path) {
   return e;
 }
 
-// Every group some triangle or line of `m` is in, by dimension, then id, named as the .msh names it.
-std::vector<Group> groups_of(const io::HighOrderMesh& m) {
-  std::set<std::pair<int, int>> used;  // (dimension, id)
-  for (int t : m.triangle_physical)
-    if (t > 0) used.insert({2, t});
-  for (int l = 0; l < m.line_count(); ++l)
-    for (int g : m.groups_of_line(l)) used.insert({1, g});
-  std::vector<Group> out;
-  for (const auto& [dimension, id] : used) {
-    const auto name = m.physical_names.find({dimension, id});
-    out.push_back(Group{dimension, id, name != m.physical_names.end() ? name->second : std::string()});
-  }
-  return out;
-}
-
 }  // namespace
 
 Mesh make_mesh(std::shared_ptr<const Mesh::Impl> impl) {
@@ -77,12 +60,10 @@ std::shared_ptr<const Mesh::Impl> mesh_impl(pipeline::Result result, std::string
   for (int physical : m.line_physical) impl->line_tags.push_back(tag_of(physical));
   impl->triangle_groups = m.triangle_physical;
   impl->line_groups.reserve(m.line_physical.size());
-  for (int l = 0; l < m.line_count(); ++l) {
-    std::vector<int> groups = m.groups_of_line(l);
-    std::sort(groups.begin(), groups.end());
-    impl->line_groups.push_back(std::move(groups));
-  }
-  impl->groups = groups_of(m);
+  for (int l = 0; l < m.line_count(); ++l) impl->line_groups.push_back(m.groups_of_line(l));
+  // The groups as the run listed them for its statistics.
+  for (const auto& g : result.stats.at("groups"))
+    impl->groups.push_back(Group{g.at("dim").get<int>(), g.at("id").get<int>(), g.at("name").get<std::string>()});
   const std::vector<int> curves = pipeline::line_curves(result, m);
   impl->line_curves.assign(curves.begin(), curves.end());
   impl->stats_json = pipeline::stats_text(result);

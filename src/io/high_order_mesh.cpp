@@ -1,5 +1,6 @@
 #include "io/high_order_mesh.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -17,6 +18,7 @@ std::vector<int> HighOrderMesh::groups_of_line(int l) const {
   std::vector<int> out;
   if (line_physical.at(l) > 0) out.push_back(line_physical[l]);
   if (!line_groups.empty()) out.insert(out.end(), line_groups.at(l).begin(), line_groups[l].end());
+  std::sort(out.begin(), out.end());
   return out;
 }
 

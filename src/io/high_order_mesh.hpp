@@ -54,7 +54,7 @@ struct HighOrderMesh {
     return std::span<const int>(lines).subspan(std::size_t(l) * line_size(), line_size());
   }
 
-  // Every physical group of line l: line_physical (when not 0), then line_groups.
+  // Every physical group of line l, ascending: line_physical (when not 0) and line_groups.
   std::vector<int> groups_of_line(int l) const;
 
   // Appends an element; `node_indices` must have triangle_size() (line_size()) entries.

@@ -71,7 +71,6 @@ std::vector<Group> group_triangles(const std::vector<int>& physical) {
 // it lies on, the first when several), else its line_physical (a side of the box).
 std::optional<std::vector<int>> line_tags(const HighOrderMesh& m, int l, bool boundary_only) {
   std::vector<int> tags = m.groups_of_line(l);
-  std::sort(tags.begin(), tags.end());
   if (!boundary_only) return tags;
   if (std::find(tags.begin(), tags.end(), kPhysicalBorder) == tags.end()) return std::nullopt;
   const auto element = std::upper_bound(tags.begin(), tags.end(), kPhysicalBorder);
