@@ -9,6 +9,7 @@
 #include "features/features.hpp"
 #include "geometry/closest_point.hpp"
 #include "pipeline/pipeline.hpp"
+#include "round_off_path.hpp"
 #include "tangent_junction.hpp"
 
 using namespace curvemesh;
@@ -381,14 +382,7 @@ TEST(Features, AClosedPathComingBackToItsStartWithinRoundOffIsOnePrimaryOutline)
   // Its relative coordinates sum back to the start only to 7e-15: the reader closes it exactly
   // (no degenerate closing line, no curve ending beside the first), and the curves that meet
   // there keep their primary pieces.
-  const std::string d =
-      "M 50.1 0.3 c 0.9017403 10.4244198 -6.222571 24.7737399 -16.120289 31.2732593 "
-      "c -9.897718 6.4995194 -28.6473604 10.0435088 -43.266019 7.7238572 "
-      "c -14.6186586 -2.3196516 -39.9662093 -12.2496892 -44.4459324 -21.6417669 "
-      "c -4.4797231 -9.3920777 10.7398515 -25.3186215 17.567594 -34.7106992 "
-      "c 6.8277425 -9.3920777 12.6098751 -19.3221153 23.398861 -21.6417669 "
-      "c 10.7889859 -2.3196516 30.8574237 1.2243378 41.3350546 7.7238572 "
-      "c 10.4776309 6.4995194 20.6289905 20.8488395 21.5307308 31.2732593 z";
+  const std::string d = std::string(testing_support::kClosingWithinRoundOff) + "z";
   const auto f = process(read_text("<svg xmlns='http://www.w3.org/2000/svg'><path d='" + d + "'/></svg>"));
   EXPECT_EQ(f.degenerate_curves, 0);
   EXPECT_EQ(count(f, Kind::secondary), 0);
