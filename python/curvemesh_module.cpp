@@ -127,13 +127,9 @@ py::dict report_dict(const curvemesh::CheckReport& r) {
   return d;
 }
 
-}  // namespace
 
-PYBIND11_MODULE(_curvemesh, m) {
-  m.doc() =
-      "The compiled part of curvemesh: the public C++ API bound as it is. Use the package `curvemesh`, "
-      "not this module.";
-
+// curvemesh::Error as the Python exception its kind stands for, with its message.
+void translate_errors() {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
@@ -152,13 +148,10 @@ PYBIND11_MODULE(_curvemesh, m) {
       }
     }
   });
+}
 
-  m.def("version", &curvemesh::version, "The library's version, e.g. '0.1.0'.");
-
-  py::tuple names(std::size(kTags));
-  for (std::size_t k = 0; k < std::size(kTags); ++k) names[k] = py::str(curvemesh::tag_name(kTags[k]));
-  m.attr("LINE_TAG_NAMES") = names;
-
+// Parameters and the table of their options.
+void bind_parameters(py::module_& m) {
   py::class_<curvemesh::Parameters>(m, "Parameters",
                                     "The parameters (curvemesh::Parameters); fields through get/set_parameter.")
       .def(py::init<>())
@@ -179,7 +172,10 @@ PYBIND11_MODULE(_curvemesh, m) {
   m.def(
       "get_parameter", [](const curvemesh::Parameters& p, const std::string& name) { return option_named(name).get(p); },
       "The option with this Python name as a number.");
+}
 
+// The Mesh class: its arrays, statistics, warnings and writing.
+void bind_mesh(py::module_& m) {
   py::class_<curvemesh::Mesh>(m, "Mesh", "A finished mesh (curvemesh::Mesh); curvemesh.Mesh wraps it.")
       .def_property_readonly("order", &curvemesh::Mesh::order, "3 (cubic), 2 (quadratic) or 1 (linear).")
       .def(
@@ -238,7 +234,10 @@ PYBIND11_MODULE(_curvemesh, m) {
           },
           py::arg("path"), py::arg("msh_version") = 41,
           "Writes the mesh by the path's extension (.msh, .vtu, .xdmf, .svg); `path` is bytes or str.");
+}
 
+// Meshing and checking, the GIL released while the library works.
+void bind_functions(py::module_& m) {
   m.def(
       "mesh_file",
       [](const std::string& path, curvemesh::Parameters parameters) {
@@ -288,4 +287,23 @@ PYBIND11_MODULE(_curvemesh, m) {
       py::arg("mesh"), py::arg("exact") = false,
       "Checks a mesh as its .msh file would hold it (every element in rationals when exact); a dict "
       "of the verdict.");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_curvemesh, m) {
+  m.doc() =
+      "The compiled part of curvemesh: the public C++ API bound as it is. Use the package `curvemesh`, "
+      "not this module.";
+  translate_errors();
+
+  m.def("version", &curvemesh::version, "The library's version, e.g. '0.1.0'.");
+
+  py::tuple names(std::size(kTags));
+  for (std::size_t k = 0; k < std::size(kTags); ++k) names[k] = py::str(curvemesh::tag_name(kTags[k]));
+  m.attr("LINE_TAG_NAMES") = names;
+
+  bind_parameters(m);
+  bind_mesh(m);
+  bind_functions(m);
 }
