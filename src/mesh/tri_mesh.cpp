@@ -104,7 +104,7 @@ void TriMesh::erase_feature(int a, int b) {
 }
 
 void TriMesh::set_feature(int a, int b, const EdgeFeature& f) {
-  if (journal_open_) {
+  if (journal_open()) {
     const EdgeFeature* old = feature(a, b);
     record({.kind = Change::Kind::feature, .lo = std::min(a, b), .hi = std::max(a, b),
             .feature = old ? std::optional(*old) : std::nullopt});
@@ -113,7 +113,7 @@ void TriMesh::set_feature(int a, int b, const EdgeFeature& f) {
 }
 
 void TriMesh::clear_feature(int a, int b) {
-  if (journal_open_) {
+  if (journal_open()) {
     const EdgeFeature* old = feature(a, b);
     if (!old) return;
     record({.kind = Change::Kind::feature, .lo = std::min(a, b), .hi = std::max(a, b), .feature = *old});
@@ -122,57 +122,61 @@ void TriMesh::clear_feature(int a, int b) {
 }
 
 void TriMesh::open_journal() {
-  journal_.clear();
-  journal_open_ = true;
+  marks_.push_back(journal_.size());
+  attributes_.open();
 }
 
 void TriMesh::commit() {
-  journal_.clear();
-  journal_open_ = false;
+  if (marks_.empty()) throw std::logic_error("TriMesh::commit with no open journal");
+  marks_.pop_back();
+  if (marks_.empty()) journal_.clear();
+  attributes_.commit();
 }
 
 void TriMesh::rollback() {
-  journal_open_ = false;
-  for (auto it = journal_.rbegin(); it != journal_.rend(); ++it) {
-    const Change& c = *it;
-    switch (c.kind) {
-      case Change::Kind::add_vertex:
-        points_.pop_back();
-        vertex_tags_.pop_back();
-        exact_index_.pop_back();
-        vertex_triangles_.pop_back();
-        tagged_.pop_back();
-        has_tagged_.pop_back();
-        break;
-      case Change::Kind::add_triangle:
-        unlink(triangle_slots() - 1);
-        triangles_.pop_back();
-        --alive_triangles_;
-        break;
-      case Change::Kind::remove_triangle:
-        triangles_[c.index] = c.corners;
-        link(c.index);
-        ++alive_triangles_;
-        break;
-      case Change::Kind::set_triangle:
-        unlink(c.index);
-        triangles_[c.index] = c.corners;
-        link(c.index);
-        break;
-      case Change::Kind::position:
-        points_[c.index] = c.point;
-        exact_index_[c.index] = c.exact_index;  // exact points are only appended: the old one is there
-        break;
-      case Change::Kind::tag:
-        vertex_tags_[c.index] = c.tag;
-        break;
-      case Change::Kind::feature:
-        if (c.feature) put_feature(c.lo, c.hi, *c.feature);
-        else erase_feature(c.lo, c.hi);
-        break;
-    }
+  if (marks_.empty()) throw std::logic_error("TriMesh::rollback with no open journal");
+  for (; journal_.size() > marks_.back(); journal_.pop_back()) undo(journal_.back());
+  marks_.pop_back();
+  attributes_.rollback();
+}
+
+void TriMesh::undo(const Change& c) {
+  switch (c.kind) {
+    case Change::Kind::add_vertex:
+      points_.pop_back();
+      vertex_tags_.pop_back();
+      exact_index_.pop_back();
+      vertex_triangles_.pop_back();
+      tagged_.pop_back();
+      has_tagged_.pop_back();
+      break;
+    case Change::Kind::add_triangle:
+      unlink(triangle_slots() - 1);
+      triangles_.pop_back();
+      --alive_triangles_;
+      break;
+    case Change::Kind::remove_triangle:
+      triangles_[c.index] = c.corners;
+      link(c.index);
+      ++alive_triangles_;
+      break;
+    case Change::Kind::set_triangle:
+      unlink(c.index);
+      triangles_[c.index] = c.corners;
+      link(c.index);
+      break;
+    case Change::Kind::position:
+      points_[c.index] = c.point;
+      exact_index_[c.index] = c.exact_index;  // exact points are only appended: the old one is there
+      break;
+    case Change::Kind::tag:
+      vertex_tags_[c.index] = c.tag;
+      break;
+    case Change::Kind::feature:
+      if (c.feature) put_feature(c.lo, c.hi, *c.feature);
+      else erase_feature(c.lo, c.hi);
+      break;
   }
-  journal_.clear();
 }
 
 std::vector<std::pair<std::array<int, 2>, EdgeFeature>> TriMesh::sorted_features() const {
@@ -226,7 +230,7 @@ int TriMesh::orientation_with(int a, int b, int c, int moved, const Vec2& p) con
 }
 
 std::vector<int> TriMesh::compact() {
-  if (journal_open_) throw std::logic_error("TriMesh::compact with an open journal");
+  if (journal_open()) throw std::logic_error("TriMesh::compact with an open journal");
   const int n = vertex_count();
   std::vector<int> remap(n, -1);
   int next = 0;

@@ -15,6 +15,7 @@
 
 #include "geometry/predicates.hpp"
 #include "geometry/vec2.hpp"
+#include "mesh/journal.hpp"
 
 namespace curvemesh::mesh {
 
@@ -119,14 +120,18 @@ class TriMesh {
   std::vector<int> compact();
 
   // --- taking changes back ---
-  // While a journal is open, every change above is recorded; `rollback` takes them all back (the
-  // mesh is then as it was when the journal opened, up to the order of incidence lists) and
-  // `commit` keeps them. Used to try an operation and judge its outcome afterwards. `compact`
-  // is not allowed while a journal is open.
+  // While a journal level is open, every change above is recorded, and so is every change to the
+  // stores attached to journal() (mesh/journal.hpp). `rollback` takes back the changes of the
+  // innermost level (the mesh is then as it was when that level opened, up to the order of
+  // incidence lists); `commit` hands them to the enclosing level, or keeps them for good at the
+  // outermost one. Used to try an operation — or a move and its repair — and judge the outcome
+  // afterwards. `compact` is not allowed while a level is open.
   void open_journal();
   void rollback();
   void commit();
-  bool journal_open() const { return journal_open_; }
+  bool journal_open() const { return !marks_.empty(); }
+  // Where a stage attaches what it keeps beside the mesh, to be taken back with it.
+  Journal& journal() { return attributes_; }
 
   // Checks the structural invariants: incidence lists match triangles, every triangle is
   // counter-clockwise (exact), every tagged edge exists. Returns a description of the first
@@ -164,12 +169,14 @@ class TriMesh {
     std::optional<EdgeFeature> feature = std::nullopt;
   };
   void record(Change change) {
-    if (journal_open_) journal_.push_back(std::move(change));
+    if (!marks_.empty()) journal_.push_back(std::move(change));
   }
   void link(int t);    // adds t to its corners' incidence lists
   void unlink(int t);  // removes t from its corners' incidence lists
-  bool journal_open_ = false;
+  void undo(const Change& c);
   std::vector<Change> journal_;
+  std::vector<std::size_t> marks_;  // per open level, the journal's length when it opened
+  Journal attributes_;
 };
 
 }  // namespace curvemesh::mesh

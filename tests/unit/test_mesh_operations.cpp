@@ -327,6 +327,70 @@ TEST(MeshOperations, RolledBackOperationsLeaveTheMeshAsItWas) {
   f.mesh.rollback();
 }
 
+// Levels nest: random operations, each level opened inside the last, with stores attached to
+// the mesh's journal changed beside it (a value per vertex, an entry per edge, as the curve stage
+// keeps its nodes). Rolling a level back restores the mesh and the stores as they were when that
+// level opened, whatever the inner levels did and whether they were committed or rolled back.
+TEST(MeshOperations, NestedJournalLevelsRollBackAlone) {
+  Fixture f = make_grid(8, 7);
+  mesh::JournaledVector<double> weight(f.mesh.journal());
+  mesh::JournaledMap<std::uint64_t, int> label(f.mesh.journal());
+  weight.assign(std::vector<double>(f.mesh.vertex_count(), 1.0));
+  struct Level {
+    MeshState mesh;
+    std::vector<double> weights;
+    std::map<std::uint64_t, int> labels;
+  };
+  std::set<std::uint64_t> keys;  // every key ever labelled
+  const auto labels = [&] {
+    std::map<std::uint64_t, int> out;
+    for (const auto k : keys)
+      if (const int* x = label.find(k)) out[k] = *x;
+    return out;
+  };
+  std::mt19937 rng(77);
+  std::vector<Level> open;
+  int rolled_back = 0, committed = 0, deepest = 0;
+  for (int step = 0; step < 600; ++step) {
+    const unsigned action = rng() % 10;
+    if (action < 3 && open.size() < 4) {
+      open.push_back({state_of(f.mesh), weight.values(), labels()});
+      f.mesh.open_journal();
+      deepest = std::max(deepest, static_cast<int>(open.size()));
+    } else if (action < 5 && !open.empty()) {
+      f.mesh.rollback();
+      ASSERT_TRUE(state_of(f.mesh) == open.back().mesh) << "step " << step << ", depth " << open.size();
+      ASSERT_EQ(weight.values(), open.back().weights) << "step " << step;
+      ASSERT_EQ(labels(), open.back().labels) << "step " << step;
+      open.pop_back();
+      ++rolled_back;
+    } else if (action < 6 && !open.empty()) {
+      f.mesh.commit();
+      open.pop_back();
+      ++committed;
+    } else {
+      const auto edges = edges_of(f.mesh);
+      const auto& e = edges[std::uniform_int_distribution<std::size_t>(0, edges.size() - 1)(rng)];
+      if (rng() % 2) split_edge(f.mesh, f.constraints, e[0], e[1], 10.0);
+      else swap_edge(f.mesh, e[0], e[1], 1e9);
+      weight.resize(f.mesh.vertex_count(), 0.5);
+      weight.set(e[0], weight[e[0]] + 1);
+      const auto key = mesh::edge_key(e[0], e[1]);
+      keys.insert(key);
+      if (rng() % 3) label.set(key, step);
+      else label.erase(key);
+    }
+    EXPECT_EQ(f.mesh.journal_open(), !open.empty());
+    if (HasFatalFailure()) return;
+  }
+  while (!open.empty()) f.mesh.commit(), open.pop_back();
+  expect_invariants(f, "nested");
+  EXPECT_GT(rolled_back, 50);
+  EXPECT_GT(committed, 20);
+  EXPECT_EQ(deepest, 4);
+  EXPECT_THROW(f.mesh.commit(), std::logic_error);
+}
+
 TEST(MeshOperations, SplitOfAPrimaryEdgeLandsOnTheCurve) {
   Fixture f = make_grid(6, 4);
   for (const auto& [edge, feat] : f.mesh.sorted_features()) {
