@@ -252,6 +252,166 @@ double curved_energy(const TriMesh& m, const mesh::Constraints& c, int t) {
 
 }  // namespace
 
+namespace {
+
+// When each vertex's star last changed, on a logical clock, so that the coarsening tries again
+// only what changed: an operation's outcome depends on the stars it reads alone, so one tried on
+// stars that have not changed since is refused again. `changed[v]`: one of v's triangles came or
+// went, or a corner of one moved (a rollback counts: it may reorder the incidence lists, which the
+// energies are summed in); `reshaped[v]`: one of its triangles came or went.
+struct StarClock {
+  long now = 1;
+  std::vector<long> changed, reshaped;
+  explicit StarClock(int vertices) : changed(vertices, 0), reshaped(vertices, 0) {}
+
+  long tick() { return ++now; }
+  // v's star and its neighbours' stars changed now.
+  void star_changed(const TriMesh& m, int v, bool topology) {
+    changed[v] = now;
+    if (topology) reshaped[v] = now;
+    for (int t : m.triangles_of(v))
+      for (int w : m.triangle(t)) {
+        changed[w] = now;
+        if (topology) reshaped[w] = now;
+      }
+  }
+  // After a compaction: the stamps follow the vertices' new numbers.
+  void renumber(const std::vector<int>& remap, int vertices) {
+    std::vector<long> kept_changed(vertices, 0), kept_reshaped(vertices, 0);
+    for (std::size_t v = 0; v < remap.size(); ++v)
+      if (remap[v] >= 0) kept_changed[remap[v]] = changed[v], kept_reshaped[remap[v]] = reshaped[v];
+    changed = std::move(kept_changed);
+    reshaped = std::move(kept_reshaped);
+  }
+};
+
+// The curved pipeline's test of a collapse or swap of edge (a, b): `operation` is done under the
+// journal and kept when `worst_after()` (the curved_energy of what it made) is at most the curved
+// stop energy; else it is taken back (the rollback counts as a change of both ends' stars) and
+// done again only if `worst_before()` (what it replaced, read after the rollback) was as bad. A
+// coarser mesh beside a curve leaves the curved edge's bulge less room, and a swap can leave the
+// bulge against the opposite corner: the curve stage cannot always undo either. (Judging the
+// triangles along curves by their curved form alone, letting their linear energy rise to the
+// curved stop energy, gives coarser meshes; but the curve stage does more than curved_energy
+// foresees — splits triangles with two curved edges, projects late vertices, takes the first
+// certified centre — and more meshes then end above the stop energy.)
+template <class Operation, class After, class Before>
+bool curved_test(TriMesh& m, const Options& o, StarClock& clock, int a, int b, const Operation& operation,
+                 const After& worst_after, const Before& worst_before) {
+  m.open_journal();
+  if (!operation()) {
+    m.commit();
+    return false;
+  }
+  const double after = worst_after();
+  if (after <= o.curved_stop_amips) {
+    m.commit();
+    return true;
+  }
+  m.rollback();
+  clock.tick();
+  clock.star_changed(m, a, true);
+  clock.star_changed(m, b, true);
+  return after <= worst_before() && operation();
+}
+
+// The worst of v's triangles once curved (curved_energy).
+double star_curved(const TriMesh& m, const mesh::Constraints& c, int v) {
+  double worst = 0;
+  for (int t : m.triangles_of(v)) worst = std::max(worst, curved_energy(m, c, t));
+  return worst;
+}
+
+// One round's collapses: every edge shorter than the target with an end whose star changed since
+// the last round began, shortest first, each vertex touched once; every new triangle at most
+// max(stop energy, the worst it replaces), as in the loop, and no new edge longer than 5/3 of the
+// target; in the curved pipeline, curved_test too. Returns the number kept.
+long coarsening_collapses(TriMesh& m, const mesh::Constraints& c, const Options& o, StarClock& clock, long since) {
+  const double target = o.edge_length;
+  const bool curved = o.curved_stop_amips > 0;
+  const mesh::CollapseTest short_enough = [&](int from, int to) {
+    return mesh::collapse_keeps_edges_short(m, from, to, [&](int, int) { return mesh::kCoarseningScale * target; });
+  };
+  const auto collapse = [&](int from, int to) {
+    const auto operation = [&] { return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough); };
+    if (!curved) return operation();
+    return curved_test(
+        m, o, clock, from, to, operation, [&] { return star_curved(m, c, to); },
+        [&] { return std::max(star_curved(m, c, from), star_curved(m, c, to)); });
+  };
+  // A collapse reads the stars of both ends.
+  const std::vector<Edge> edges = collapse_candidates(
+      m, [&](int, int) { return target; },
+      [&](int a, int b) { return clock.changed[a] >= since || clock.changed[b] >= since; });
+  std::vector<char> touched(m.vertex_count(), 0);
+  long collapsed = 0;
+  for (const Edge& e : edges) {
+    if (touched[e.a] || touched[e.b]) continue;
+    if ((e.a_moves && collapse(e.a, e.b)) || (e.b_moves && collapse(e.b, e.a))) {
+      ++collapsed;
+      touched[e.a] = touched[e.b] = 1;
+      clock.tick();
+      clock.star_changed(m, e.a, true);  // the one that stayed has the merged star; the other has none
+      clock.star_changed(m, e.b, true);
+    }
+  }
+  return collapsed;
+}
+
+// One round's swaps where they lower the larger energy of the two triangles; in the curved
+// pipeline, curved_test too (the two triangles it makes at most the curved stop energy once
+// curved, or no worse than the two it replaced). A swap of (a, b) reads its two triangles and the
+// stars of the two opposite corners (is the other diagonal an edge already?): it is tried again
+// when a corner of either triangle has a changed star, that is when a and b are both corners of
+// such triangles (`near`). `since` is 0 on the first round: every edge is tried.
+int coarsening_swaps(TriMesh& m, const mesh::Constraints& c, const Options& o, StarClock& clock, long since) {
+  std::vector<char> near(m.vertex_count(), since == 0);
+  const auto mark_near = [&](int v) {
+    for (int t : m.triangles_of(v))
+      for (int w : m.triangle(t)) near[w] = 1;
+  };
+  if (since > 0)
+    for (int v = 0; v < m.vertex_count(); ++v)
+      if (clock.changed[v] >= since) mark_near(v);
+  // The two triangles a swap rewrites keep their slots: after it they are the new diagonal's,
+  // after a rollback the old ones again, so both energies are read from the slots swap_edge names
+  // (no walk round a star before each swap tried).
+  const auto swap = [&](int a, int b, int t) {
+    std::array<int, 2> slots{-1, -1};
+    const auto operation = [&] { return mesh::swap_edge(m, a, b, 0, t, &slots); };
+    if (!(o.curved_stop_amips > 0)) return operation();
+    const auto worst_in_slots = [&] { return std::max(curved_energy(m, c, slots[0]), curved_energy(m, c, slots[1])); };
+    return curved_test(m, o, clock, a, b, operation, worst_in_slots, worst_in_slots);
+  };
+  return swap_pass(
+      m, [&](int a, int b) { return near[a] && near[b]; }, swap,
+      [&](int a, int b) {  // the quad's corners are among the corners of a's and b's triangles now
+        clock.tick();
+        for (int end : {a, b})
+          for (int t : m.triangles_of(end))
+            for (int v : m.triangle(t)) {
+              clock.changed[v] = clock.reshaped[v] = clock.now;
+              mark_near(v);
+            }
+      });
+}
+
+// Smoothing where this round's collapses and swaps changed a star (the loop left the rest
+// smoothed); returns the number of moves.
+int smooth_reshaped(TriMesh& m, const mesh::Constraints& c, StarClock& clock, long round_start) {
+  int moves = 0;
+  for (int v = 0; v < m.vertex_count(); ++v)
+    if (clock.reshaped[v] >= round_start && !m.triangles_of(v).empty() && !m.has_exact(v) &&
+        !(m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) && mesh::smooth_vertex(m, c, v)) {
+      ++moves;
+      clock.tick();
+      clock.star_changed(m, v, false);
+    }
+  return moves;
+}
+
+}  // namespace
+
 // The sizing field (small near features, halved where quality stalled) asked for more vertices
 // than quality needs in the end: the loop refines where it must, and what it refined stays. Each
 // round tries every edge shorter than the target again, against the target length alone (no new
@@ -260,160 +420,23 @@ double curved_energy(const TriMesh& m, const mesh::Constraints& c, int t) {
 // loop collapses below 4/5 of its target and up to 4/3 of it only (TetWild's rule, so that its
 // splits and collapses do not undo each other); no split follows here, and these bounds leave a
 // mean edge of about 1.1 times the target where the features leave room (the loop's bounds left
-// 0.93).
-//
-// Smoothing goes only where collapses and swaps changed the mesh (the loop left the rest
-// smoothed). After the first round, collapses and swaps are tried only where something changed
-// since that pass last ran: an operation's outcome depends on the stars it reads alone, so one
-// tried on stars that have not changed since is refused again. `changed[v]` is the last time v's
-// star changed: one of its triangles came or went, or a corner of one moved (a rollback counts:
-// it may reorder the incidence lists, which the energies are summed in); `reshaped[v]`, the last
-// time one of its triangles came or went.
+// 0.93). After the first round, collapses and swaps are tried only where something changed since
+// that pass last ran (StarClock).
 void coarsen(TriMesh& m, const mesh::Constraints& c, const Options& o, Stats& s) {
   s.before_coarsening = m.triangle_count();
-  const double target = o.edge_length;
-  const bool curved = o.curved_stop_amips > 0;
-  long clock = 1;
-  std::vector<long> changed(m.vertex_count(), 0), reshaped(m.vertex_count(), 0);
+  StarClock clock(m.vertex_count());
   long collapse_start = 0, swap_start = 0;  // when each pass last began
-  const auto star_changed = [&](int v, bool topology) {  // v's star and its neighbours' stars
-    changed[v] = clock;
-    if (topology) reshaped[v] = clock;
-    for (int t : m.triangles_of(v))
-      for (int w : m.triangle(t)) {
-        changed[w] = clock;
-        if (topology) reshaped[w] = clock;
-      }
-  };
-  const auto star_curved = [&](int v) {  // the worst of v's triangles once curved (curved_energy)
-    double worst = 0;
-    for (int t : m.triangles_of(v)) worst = std::max(worst, curved_energy(m, c, t));
-    return worst;
-  };
-  const mesh::CollapseTest short_enough = [&](int from, int to) {
-    return mesh::collapse_keeps_edges_short(m, from, to, [&](int, int) { return mesh::kCoarseningScale * target; });
-  };
-  // A collapse: every new triangle at most max(stop energy, the worst it replaces), as in the
-  // loop. In the curved pipeline it is also taken back when a triangle it leaves is above the
-  // curved stop energy once curved (curved_energy), and redone only if none is above the worst of
-  // both stars before: a coarser mesh beside a curve leaves the curved edge's bulge less room,
-  // and the curve stage cannot always undo it. (Letting the linear energy of the triangles along
-  // curves rise to the curved stop energy, judged by their curved form alone, made meshes a tenth
-  // coarser still, but the curve stage does more than curved_energy foresees — splits triangles
-  // with two curved edges, projects late vertices, takes the first certified centre: `mechorse`
-  // ended at 158.9 and 16 of the collection's first 2,249 drawings above 20, 3 before; at three
-  // quarters of it, `gis-computer_glenn_rolla_01` ended at 32.4.)
-  // The curved pipeline's test of a collapse or swap of edge (a, b), shared by both: `operation`
-  // is done under the journal and kept when `worst_after()` (the curved_energy of what it made)
-  // is at most the curved stop energy; else it is taken back (the rollback counts as a change of
-  // both ends' stars) and done again if `worst_before()` (what it replaced, read after the
-  // rollback) was as bad.
-  const auto curved_test = [&](int a, int b, const auto& operation, const auto& worst_after, const auto& worst_before) {
-    m.open_journal();
-    if (!operation()) {
-      m.commit();
-      return false;
-    }
-    const double after = worst_after();
-    if (after <= o.curved_stop_amips) {
-      m.commit();
-      return true;
-    }
-    m.rollback();
-    ++clock;
-    star_changed(a, true);
-    star_changed(b, true);
-    return after <= worst_before() && operation();
-  };
-  const auto collapse = [&](int from, int to) {
-    const auto operation = [&] { return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough); };
-    if (!curved) return operation();
-    return curved_test(
-        from, to, operation, [&] { return star_curved(to); },
-        [&] { return std::max(star_curved(from), star_curved(to)); });
-  };
   for (int round = 0; round < o.coarsening_rounds; ++round) {
-    const long round_start = ++clock;
-    // A collapse reads the stars of both ends.
-    const long since_collapse = collapse_start;
+    const long round_start = clock.tick();
+    const long collapsed = coarsening_collapses(m, c, o, clock, collapse_start);
     collapse_start = round_start;
-    const std::vector<Edge> edges = collapse_candidates(
-        m, [&](int, int) { return target; },
-        [&](int a, int b) { return changed[a] >= since_collapse || changed[b] >= since_collapse; });
-    std::vector<char> touched(m.vertex_count(), 0);
-    long collapsed = 0;
-    for (const Edge& e : edges) {
-      if (touched[e.a] || touched[e.b]) continue;
-      if ((e.a_moves && collapse(e.a, e.b)) || (e.b_moves && collapse(e.b, e.a))) {
-        ++collapsed;
-        touched[e.a] = touched[e.b] = 1;
-        ++clock;
-        star_changed(e.a, true);  // the one that stayed has the merged star; the other has none
-        star_changed(e.b, true);
-      }
-    }
     s.coarsening_collapses += collapsed;
-
-    // A swap of (a, b) reads its two triangles and the stars of the two opposite corners (is the
-    // other diagonal an edge already?): it is tried again when a corner of either triangle has a
-    // changed star, that is when a and b are both corners of such triangles (`near`).
     const long since_swap = swap_start;
-    swap_start = ++clock;
-    std::vector<char> near(m.vertex_count(), since_swap == 0);
-    const auto mark_near = [&](int v) {
-      for (int t : m.triangles_of(v))
-        for (int w : m.triangle(t)) near[w] = 1;
-    };
-    if (since_swap > 0)
-      for (int v = 0; v < m.vertex_count(); ++v)
-        if (changed[v] >= since_swap) mark_near(v);
-    // In the curved pipeline a swap is kept only if the two triangles it makes are at most the
-    // curved stop energy once curved (curved_energy), or no worse than the two it replaced: above
-    // the stop energy it is taken back (the rollback counts as a change of both ends' stars) and
-    // redone if those were as bad, as the collapses. A swap beside a curve can leave the curved
-    // edge's bulge against the opposite corner: `harp_mo_01` had a triangle at 16 once curved
-    // before its first swap pass and 36.8 after it, and ended at 28.2. (The same test on the
-    // smoothing moves cost 7.5 % more instructions on `old_truck` and changed no tail.)
-    // The two triangles a swap rewrites keep their slots: after it they are the new diagonal's,
-    // after a rollback the old ones again, so both energies are read from the slots swap_edge
-    // names (no walk round a star before each swap tried).
-    const auto swap = [&](int a, int b, int t) {
-      std::array<int, 2> slots{-1, -1};
-      const auto operation = [&] { return mesh::swap_edge(m, a, b, 0, t, &slots); };
-      if (!curved) return operation();
-      const auto worst_in_slots = [&] { return std::max(curved_energy(m, c, slots[0]), curved_energy(m, c, slots[1])); };
-      return curved_test(a, b, operation, worst_in_slots, worst_in_slots);
-    };
-    s.swaps += swap_pass(
-        m, [&](int a, int b) { return near[a] && near[b]; }, swap,
-        [&](int a, int b) {  // the quad's corners are among the corners of a's and b's triangles now
-          ++clock;
-          for (int end : {a, b})
-            for (int t : m.triangles_of(end))
-              for (int v : m.triangle(t)) {
-                changed[v] = reshaped[v] = clock;
-                mark_near(v);
-              }
-        });
-
-    // Smoothing, where this round's collapses and swaps changed a star.
-    for (int v = 0; v < m.vertex_count(); ++v)
-      if (reshaped[v] >= round_start && !m.triangles_of(v).empty() && !m.has_exact(v) &&
-          !(m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) && mesh::smooth_vertex(m, c, v)) {
-        ++s.smooths;
-        ++clock;
-        star_changed(v, false);
-      }
-
+    swap_start = clock.tick();
+    s.swaps += coarsening_swaps(m, c, o, clock, since_swap);
+    s.smooths += smooth_reshaped(m, c, clock, round_start);
     const std::vector<int> renumbered = m.compact();
-    std::vector<long> kept_changed(m.vertex_count(), 0), kept_reshaped(m.vertex_count(), 0);
-    for (std::size_t v = 0; v < renumbered.size(); ++v)
-      if (renumbered[v] >= 0) {
-        kept_changed[renumbered[v]] = changed[v];
-        kept_reshaped[renumbered[v]] = reshaped[v];
-      }
-    changed = std::move(kept_changed);
-    reshaped = std::move(kept_reshaped);
+    clock.renumber(renumbered, m.vertex_count());
     ++s.coarsening_rounds;
     if (o.log)
       *o.log << "optimize: coarsening round " << round + 1 << ": " << m.triangle_count() << " triangles, "
@@ -422,180 +445,212 @@ void coarsen(TriMesh& m, const mesh::Constraints& c, const Options& o, Stats& s)
   }
 }
 
-Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
-  const auto start = std::chrono::steady_clock::now();
-  Stats s;
-  m.compact();
-  s.initial = measure(m);
-  const double target = o.edge_length, smallest = o.min_edge_length;
-  std::vector<double> size = initial_sizes(m, target, o.pinned_size_factor, o.gradation);  // the sizing field, per vertex
-  const auto edge_target = [&](int a, int b) { return 0.5 * (size[a] + size[b]); };
-  double best_max = s.initial.max_amips;
-  int fruitless_refinements = 0;
-  long previous_changes = -1;  // none before the first iteration
-  int previous_triangles = 0;
+namespace {
 
-  for (; s.iterations < o.max_iterations; ++s.iterations) {
-    long changes = 0;  // splits and collapses: the sizing work done in this iteration
-    // Split long edges, longest first.
-    {
-      auto edges = edges_where(m, [&](const Edge& e) { return !(e.length <= mesh::kSplitAbove * edge_target(e.a, e.b)); });
-      // Each split adds two triangles (one on the box's side): refused before the mesh grows.
-      base::check_triangles(std::size_t(m.triangle_count()) + 2 * edges.size(), o.max_triangles,
-                            "to meet the edge length, " + std::to_string(edges.size()) + " edges would be split");
-      std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.length > y.length; });
-      for (const Edge& e : edges) {
-        const int v = mesh::split_edge(m, c, e.a, e.b, o.stop_max_amips);
-        if (v < 0) continue;
-        // The sizing field at the middle: graded from the nearer end, up to the target. (The
-        // average of the ends would keep the middle of a long edge between two small sizes small,
-        // and refine a whole empty region to the size of the features around it.)
-        size.push_back(std::min(target, std::min(size[e.a], size[e.b]) + 0.5 * o.gradation * e.length));
-        ++s.splits, ++changes;
-      }
-    }
-    // Collapse short edges, shortest first; an edge whose ends changed is looked at again later.
-    {
-      // Which end may move along the edge, by the kinds, is asked once: the kinds stay while the
-      // edge's ends are not touched, and a touched edge is not looked at again. An edge neither
-      // of whose ends may move is not sorted (at 16,000 curves, half the refusals), and a
-      // direction the kinds refuse is not tried.
-      const std::vector<Edge> edges =
-          collapse_candidates(m, [&](int a, int b) { return mesh::kCollapseBelow * edge_target(a, b); }, [](int, int) { return true; });
-      std::vector<char> touched(m.vertex_count(), 0);
-      // The length test after the tests on tags and curves: they refuse most collapses (at 16,000
-      // curves, every edge is shorter than the target, and most are on or next to a curve), and
-      // cost least.
-      const mesh::CollapseTest short_enough = [&](int from, int to) {
-        return mesh::collapse_keeps_edges_short(m, from, to, edge_target);
-      };
-      const auto collapse = [&](int from, int to) {
-        return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough);
-      };
-      // An edge whose ends are untouched is still there: a collapse rewrites only the triangles of
-      // the vertex that goes (those it keeps get the other end instead), so it removes or adds
-      // edges only at its two ends. (collapse_edge refuses a pair that is no edge anyway.)
-      for (const Edge& e : edges) {
-        if (touched[e.a] || touched[e.b]) continue;
-        if ((e.a_moves && collapse(e.a, e.b)) || (e.b_moves && collapse(e.b, e.a))) {
-          ++s.collapses, ++changes;
-          touched[e.a] = touched[e.b] = 1;
-        }
-      }
-    }
-    // Swap where it lowers the larger energy of the two triangles (an edge an earlier swap
-    // removed has no triangle on either side: swap_edge refuses it).
-    s.swaps += swap_pass(m);
-    // Smooth, project feature vertices onto their curves (Fig. 8), round exact vertices.
-    for (int v = 0; v < m.vertex_count(); ++v) {
-      if (m.triangles_of(v).empty()) continue;
-      if (m.has_exact(v)) {
-        mesh::round_vertex(m, c, v);
-      } else if (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) {
-        if (mesh::project_vertex(m, c, v, o.stop_max_amips)) ++s.projections;
-      } else if (mesh::smooth_vertex(m, c, v)) {
-        ++s.smooths;
-      }
-    }
-    // The vertices of the triangles that are still bad get more smoothing rounds of their own: one
-    // Newton step per pass lowers a sliver's energy by a constant factor only, and a sliver that
-    // starts at AMIPS 1e4 would otherwise cost a dozen passes over the whole mesh.
-    {
-      std::vector<int> bad;
-      for (int t = 0; t < m.triangle_slots(); ++t) {
-        if (!m.alive(t)) continue;
-        const auto& tri = m.triangle(t);
-        if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) > o.stop_max_amips)
-          bad.insert(bad.end(), tri.begin(), tri.end());
-      }
-      std::sort(bad.begin(), bad.end());
-      bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
-      std::erase_if(bad, [&](int v) {
-        return m.has_exact(v) || (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve);
-      });
-      for (int round = 0; round < o.extra_smoothing_rounds; ++round) {
-        int moved = 0;
-        for (int v : bad) moved += mesh::smooth_vertex(m, c, v);
-        s.smooths += moved;
-        if (moved == 0) break;
-      }
-    }
-    // Secondary chords beside a path of feature edges, in triangles that stay bad: released. The
-    // same sweep measures the pass: releasing moves no vertex, and compacting below keeps the
-    // triangles' order, so the energies and their sum are measure's after it.
-    double max_e = 0, sum_e = 0;
-    for (int t = 0; t < m.triangle_slots(); ++t) {
-      if (!m.alive(t)) continue;
-      const auto tri = m.triangle(t);
-      const double e = geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2]));
-      max_e = std::max(max_e, e);
-      sum_e += e;
-      if (e <= o.stop_max_amips) continue;
-      for (int i = 0; i < 3; ++i) s.released += mesh::release_secondary_edge(m, c, tri[i], tri[(i + 1) % 3]);
-    }
-    // Compact: removed elements do not keep their memory.
-    const auto remap = m.compact();
-    std::vector<double> resized(m.vertex_count(), target);
-    for (std::size_t v = 0; v < remap.size(); ++v)
-      if (remap[v] >= 0) resized[remap[v]] = size[v];
-    size = std::move(resized);
+// The sizing field (TetWild's adaptive sizing): the target edge length per vertex, small near
+// features and graded away from them, halved around triangles that stay bad.
+struct Sizing {
+  std::vector<double> size;  // per vertex
+  double edge(int a, int b) const { return 0.5 * (size[a] + size[b]); }
+};
 
-    Quality q;
-    q.vertices = m.vertex_count();
-    q.triangles = m.triangle_count();
-    q.max_amips = max_e;
-    q.mean_amips = q.triangles ? sum_e / q.triangles : 0;
-    // The smallest angle matters to the stop rule only while the energy is above the bound.
-    if (o.log || q.max_amips > o.stop_max_amips) q.min_angle_deg = min_angle_deg(m);
-    if (o.log)
-      *o.log << "optimize: iteration " << s.iterations + 1 << ": " << q.triangles << " triangles, min angle "
-             << q.min_angle_deg << ", max AMIPS " << q.max_amips << ", " << changes << " splits and collapses" << "\n";
-    if (o.on_iteration) o.on_iteration(s.iterations + 1, q.triangles, q.max_amips);
-    const bool good = q.min_angle_deg >= o.stop_min_angle_deg || q.max_amips <= o.stop_max_amips;
-    // The stop rule of §4.1 applies once the sizes are met: little is left to split or collapse
-    // (2 % of the triangles), or what is left no longer shrinks by a fifth per pass (the churn
-    // that smoothing and swapping cause, not sizing work). A mesh that grew by more than a
-    // quarter in the pass is still refining toward the target, not churning: with a small target
-    // every pass splits about twice as many edges as the one before.
-    const bool churn = previous_changes >= 0 && 5 * changes > 4 * previous_changes &&
-                       4L * (q.triangles - previous_triangles) <= previous_triangles;
-    const bool sizes_met = 50 * changes <= q.triangles || churn;
-    previous_changes = changes;
-    previous_triangles = q.triangles;
-    if (good && sizes_met) {
-      s.stop_reason = "quality";
-      ++s.iterations;
-      break;
-    }
-    if (q.max_amips < best_max * (1 - 1e-2)) {
-      best_max = q.max_amips;
-      fruitless_refinements = 0;
-    } else if (!good) {
-      // Adaptive sizing (TetWild): refine around the worst triangles on the first pass that does
-      // not lower the worst energy, and give up when refining twice in a row brought nothing.
-      if (++fruitless_refinements > 2) {
-        s.stop_reason = "no improvement";
-        ++s.iterations;
-        break;
-      }
-      for (int t = 0; t < m.triangle_slots(); ++t) {
-        const auto& tri = m.triangle(t);
-        if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) <= o.stop_max_amips) continue;
-        for (int v : tri) size[v] = std::max(smallest, 0.5 * size[v]);
-      }
-      grade(m, size, o.gradation);
+// Splits the edges longer than 4/3 of their target, longest first; returns the number of splits.
+long split_long_edges(TriMesh& m, const mesh::Constraints& c, const Options& o, Sizing& sizing, Stats& s) {
+  auto edges = edges_where(m, [&](const Edge& e) { return !(e.length <= mesh::kSplitAbove * sizing.edge(e.a, e.b)); });
+  // Each split adds two triangles (one on the box's side): refused before the mesh grows.
+  base::check_triangles(std::size_t(m.triangle_count()) + 2 * edges.size(), o.max_triangles,
+                        "to meet the edge length, " + std::to_string(edges.size()) + " edges would be split");
+  std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.length > y.length; });
+  long splits = 0;
+  for (const Edge& e : edges) {
+    const int v = mesh::split_edge(m, c, e.a, e.b, o.stop_max_amips);
+    if (v < 0) continue;
+    // The sizing field at the middle: graded from the nearer end, up to the target. (The average
+    // of the ends would keep the middle of a long edge between two small sizes small, and refine
+    // a whole empty region to the size of the features around it.)
+    sizing.size.push_back(
+        std::min(o.edge_length, std::min(sizing.size[e.a], sizing.size[e.b]) + 0.5 * o.gradation * e.length));
+    ++splits;
+  }
+  s.splits += splits;
+  return splits;
+}
+
+// Collapses the edges shorter than 4/5 of their target, shortest first; an edge whose ends
+// changed is looked at again in the next iteration. Returns the number of collapses.
+long collapse_short_edges(TriMesh& m, const mesh::Constraints& c, const Options& o, const Sizing& sizing, Stats& s) {
+  const auto edge_target = [&](int a, int b) { return sizing.edge(a, b); };
+  // Which end may move along the edge, by the kinds, is asked once: the kinds stay while the
+  // edge's ends are not touched, and a touched edge is not looked at again. An edge neither of
+  // whose ends may move is not sorted (at 16,000 curves, half the refusals), and a direction the
+  // kinds refuse is not tried.
+  const std::vector<Edge> edges = collapse_candidates(
+      m, [&](int a, int b) { return mesh::kCollapseBelow * edge_target(a, b); }, [](int, int) { return true; });
+  std::vector<char> touched(m.vertex_count(), 0);
+  // The length test after the tests on tags and curves: they refuse most collapses (at 16,000
+  // curves, every edge is shorter than the target, and most are on or next to a curve), and cost
+  // least.
+  const mesh::CollapseTest short_enough = [&](int from, int to) {
+    return mesh::collapse_keeps_edges_short(m, from, to, edge_target);
+  };
+  const auto collapse = [&](int from, int to) {
+    return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough);
+  };
+  // An edge whose ends are untouched is still there: a collapse rewrites only the triangles of the
+  // vertex that goes (those it keeps get the other end instead), so it removes or adds edges only
+  // at its two ends. (collapse_edge refuses a pair that is no edge anyway.)
+  long collapses = 0;
+  for (const Edge& e : edges) {
+    if (touched[e.a] || touched[e.b]) continue;
+    if ((e.a_moves && collapse(e.a, e.b)) || (e.b_moves && collapse(e.b, e.a))) {
+      ++collapses;
+      touched[e.a] = touched[e.b] = 1;
     }
   }
-  if (s.stop_reason.empty()) s.stop_reason = "iteration limit";
+  s.collapses += collapses;
+  return collapses;
+}
 
-  // Vertices that kept an exact position get one more chance, with the mesh as it is now; one
-  // that still cannot be rounded (it rounds onto a neighbour: features closer than a double can
-  // tell) is collapsed into its nearest neighbour that takes it, whatever the energy: a mesh with
-  // a vertex that has no double position cannot be written, and the curve stage's operations
-  // improve what the collapse leaves. When no neighbour takes it, what stops it is a neighbour
-  // flat with it to round-off (a free vertex lying on a secondary line through it, say): its free
-  // and secondary neighbours, nearest first, are collapsed into it, whatever the energy, until it
-  // rounds or goes.
+// Every vertex smoothed, a feature vertex off its curve projected onto it (Fig. 8), an exact
+// vertex rounded to doubles where that inverts nothing.
+void smooth_all(TriMesh& m, const mesh::Constraints& c, const Options& o, Stats& s) {
+  for (int v = 0; v < m.vertex_count(); ++v) {
+    if (m.triangles_of(v).empty()) continue;
+    if (m.has_exact(v)) {
+      mesh::round_vertex(m, c, v);
+    } else if (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) {
+      if (mesh::project_vertex(m, c, v, o.stop_max_amips)) ++s.projections;
+    } else if (mesh::smooth_vertex(m, c, v)) {
+      ++s.smooths;
+    }
+  }
+}
+
+// The vertices of the triangles that are still bad get more smoothing rounds of their own: one
+// Newton step per pass lowers a sliver's energy by a constant factor only, and a sliver that
+// starts at AMIPS 1e4 would otherwise cost a dozen passes over the whole mesh.
+void smooth_bad_again(TriMesh& m, const mesh::Constraints& c, const Options& o, Stats& s) {
+  std::vector<int> bad;
+  for (int t = 0; t < m.triangle_slots(); ++t) {
+    if (!m.alive(t)) continue;
+    const auto& tri = m.triangle(t);
+    if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) > o.stop_max_amips)
+      bad.insert(bad.end(), tri.begin(), tri.end());
+  }
+  std::sort(bad.begin(), bad.end());
+  bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
+  std::erase_if(bad, [&](int v) {
+    return m.has_exact(v) || (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve);
+  });
+  for (int round = 0; round < o.extra_smoothing_rounds; ++round) {
+    int moved = 0;
+    for (int v : bad) moved += mesh::smooth_vertex(m, c, v);
+    s.smooths += moved;
+    if (moved == 0) break;
+  }
+}
+
+// Secondary chords beside a path of feature edges, in triangles that stay bad: released. The same
+// sweep measures the pass (the largest and the summed energy): releasing moves no vertex, and the
+// compaction that follows keeps the triangles' order, so these are measure's after it.
+std::pair<double, double> release_and_measure(TriMesh& m, const mesh::Constraints& c, const Options& o, Stats& s) {
+  double max_e = 0, sum_e = 0;
+  for (int t = 0; t < m.triangle_slots(); ++t) {
+    if (!m.alive(t)) continue;
+    const auto tri = m.triangle(t);
+    const double e = geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2]));
+    max_e = std::max(max_e, e);
+    sum_e += e;
+    if (e <= o.stop_max_amips) continue;
+    for (int i = 0; i < 3; ++i) s.released += mesh::release_secondary_edge(m, c, tri[i], tri[(i + 1) % 3]);
+  }
+  return {max_e, sum_e};
+}
+
+// Removed elements do not keep their memory; the sizing field follows the renumbering.
+void compact(TriMesh& m, Sizing& sizing, double target) {
+  const auto remap = m.compact();
+  std::vector<double> resized(m.vertex_count(), target);
+  for (std::size_t v = 0; v < remap.size(); ++v)
+    if (remap[v] >= 0) resized[remap[v]] = sizing.size[v];
+  sizing.size = std::move(resized);
+}
+
+// The stop rule of §4.1, and when to refine the sizing field instead (TetWild's adaptive sizing).
+class StopRule {
+ public:
+  enum class Verdict { go_on, quality, no_improvement, refine };
+  explicit StopRule(double initial_max) : best_max_(initial_max) {}
+
+  Verdict judge(const Quality& q, long changes, const Options& o) {
+    const bool good = q.min_angle_deg >= o.stop_min_angle_deg || q.max_amips <= o.stop_max_amips;
+    // The rule applies once the sizes are met: little is left to split or collapse (2 % of the
+    // triangles), or what is left no longer shrinks by a fifth per pass (the churn that smoothing
+    // and swapping cause, not sizing work). A mesh that grew by more than a quarter in the pass is
+    // still refining toward the target, not churning: with a small target every pass splits about
+    // twice as many edges as the one before.
+    const bool churn = previous_changes_ >= 0 && 5 * changes > 4 * previous_changes_ &&
+                       4L * (q.triangles - previous_triangles_) <= previous_triangles_;
+    const bool sizes_met = 50 * changes <= q.triangles || churn;
+    previous_changes_ = changes;
+    previous_triangles_ = q.triangles;
+    if (good && sizes_met) return Verdict::quality;
+    if (q.max_amips < best_max_ * (1 - 1e-2)) {
+      best_max_ = q.max_amips;
+      fruitless_refinements_ = 0;
+      return Verdict::go_on;
+    }
+    if (good) return Verdict::go_on;
+    // Refine around the worst triangles on the first pass that does not lower the worst energy;
+    // give up when refining twice in a row brought nothing.
+    return ++fruitless_refinements_ > 2 ? Verdict::no_improvement : Verdict::refine;
+  }
+
+ private:
+  double best_max_;
+  int fruitless_refinements_ = 0;
+  long previous_changes_ = -1;  // none before the first iteration
+  int previous_triangles_ = 0;
+};
+
+// Halves the target size at the corners of the triangles above the stop energy, then grades.
+void refine_around_bad(const TriMesh& m, const Options& o, Sizing& sizing) {
+  for (int t = 0; t < m.triangle_slots(); ++t) {
+    const auto& tri = m.triangle(t);
+    if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) <= o.stop_max_amips) continue;
+    for (int v : tri) sizing.size[v] = std::max(o.min_edge_length, 0.5 * sizing.size[v]);
+  }
+  grade(m, sizing.size, o.gradation);
+}
+
+// The pass's quality from release_and_measure's energies; the smallest angle matters to the stop
+// rule only while the energy is above the bound.
+Quality pass_quality(const TriMesh& m, const Options& o, std::pair<double, double> energies) {
+  Quality q;
+  q.vertices = m.vertex_count();
+  q.triangles = m.triangle_count();
+  q.max_amips = energies.first;
+  q.mean_amips = q.triangles ? energies.second / q.triangles : 0;
+  if (o.log || q.max_amips > o.stop_max_amips) q.min_angle_deg = min_angle_deg(m);
+  return q;
+}
+
+void report_pass(const Options& o, int iteration, const Quality& q, long changes) {
+  if (o.log)
+    *o.log << "optimize: iteration " << iteration << ": " << q.triangles << " triangles, min angle "
+           << q.min_angle_deg << ", max AMIPS " << q.max_amips << ", " << changes << " splits and collapses" << "\n";
+  if (o.on_iteration) o.on_iteration(iteration, q.triangles, q.max_amips);
+}
+
+// Vertices that kept an exact position get one more chance, with the mesh as it is now; one that
+// still cannot be rounded (it rounds onto a neighbour: features closer than a double can tell) is
+// collapsed into its nearest neighbour that takes it, whatever the energy: a mesh with a vertex
+// that has no double position cannot be written, and the curve stage's operations improve what the
+// collapse leaves. When no neighbour takes it, what stops it is a neighbour flat with it to
+// round-off (a free vertex lying on a secondary line through it, say): its free and secondary
+// neighbours, nearest first, are collapsed into it, whatever the energy, until it rounds or goes.
+// Returns whether anything was collapsed.
+bool settle_exact_vertices(TriMesh& m, const mesh::Constraints& c, Stats& s) {
   const auto by_distance_to = [&](int v) {
     std::vector<int> near = m.neighbours(v);
     std::stable_sort(near.begin(), near.end(), [&](int x, int y) {
@@ -603,11 +658,12 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
     });
     return near;
   };
+  const double any = std::numeric_limits<double>::infinity();
   bool collapsed = false;
   const auto settle = [&](int v) {
     if (mesh::round_vertex(m, c, v)) return true;
     for (int w : by_distance_to(v))
-      if (mesh::collapse_edge(m, c, v, w, std::numeric_limits<double>::infinity())) {
+      if (mesh::collapse_edge(m, c, v, w, any)) {
         ++s.collapses;
         collapsed = true;
         return true;
@@ -619,24 +675,61 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
     for (int w : by_distance_to(v)) {
       const mesh::VertexKind k = m.tag(w).kind;
       if (k != mesh::VertexKind::free && k != mesh::VertexKind::secondary) continue;
-      if (!mesh::collapse_edge(m, c, w, v, std::numeric_limits<double>::infinity())) continue;
+      if (!mesh::collapse_edge(m, c, w, v, any)) continue;
       ++s.collapses;
       collapsed = true;
       if (settle(v)) break;
     }
   }
-  if (collapsed) {
-    // What those collapses flattened (a vertex moved onto a secondary line with others on it to
-    // round-off), released and swapped as in the iterations.
-    for (int t = 0; t < m.triangle_slots(); ++t) {
-      if (!m.alive(t)) continue;
-      const auto tri = m.triangle(t);
-      if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) <= o.stop_max_amips) continue;
-      for (int i = 0; i < 3; ++i) s.released += mesh::release_secondary_edge(m, c, tri[i], tri[(i + 1) % 3]);
-    }
-    s.swaps += swap_pass(m);
-    m.compact();  // the collapsed vertices (and their exact positions) go
+  return collapsed;
+}
+
+// What settle_exact_vertices' collapses flattened (a vertex moved onto a secondary line with
+// others on it to round-off), released and swapped as in the iterations; the collapsed vertices
+// (and their exact positions) go.
+void repair_after_settling(TriMesh& m, const mesh::Constraints& c, const Options& o, Stats& s) {
+  for (int t = 0; t < m.triangle_slots(); ++t) {
+    if (!m.alive(t)) continue;
+    const auto tri = m.triangle(t);
+    if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) <= o.stop_max_amips) continue;
+    for (int i = 0; i < 3; ++i) s.released += mesh::release_secondary_edge(m, c, tri[i], tri[(i + 1) % 3]);
   }
+  s.swaps += swap_pass(m);
+  m.compact();
+}
+
+}  // namespace
+
+// §4.1: TetWild's loop of splits, collapses, swaps and smoothing under the sizing field, until the
+// stop rule holds; then the vertices left exact are settled and the mesh coarsened.
+Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
+  const auto start = std::chrono::steady_clock::now();
+  Stats s;
+  m.compact();
+  s.initial = measure(m);
+  Sizing sizing{initial_sizes(m, o.edge_length, o.pinned_size_factor, o.gradation)};
+  StopRule stop(s.initial.max_amips);
+  for (; s.iterations < o.max_iterations; ++s.iterations) {
+    long changes = split_long_edges(m, c, o, sizing, s);  // the sizing work done in this iteration
+    changes += collapse_short_edges(m, c, o, sizing, s);
+    // Swaps where they lower the larger energy of the two triangles.
+    s.swaps += swap_pass(m);
+    smooth_all(m, c, o, s);
+    smooth_bad_again(m, c, o, s);
+    const auto energies = release_and_measure(m, c, o, s);
+    compact(m, sizing, o.edge_length);
+    const Quality q = pass_quality(m, o, energies);
+    report_pass(o, s.iterations + 1, q, changes);
+    const StopRule::Verdict verdict = stop.judge(q, changes, o);
+    if (verdict == StopRule::Verdict::quality || verdict == StopRule::Verdict::no_improvement) {
+      s.stop_reason = verdict == StopRule::Verdict::quality ? "quality" : "no improvement";
+      ++s.iterations;
+      break;
+    }
+    if (verdict == StopRule::Verdict::refine) refine_around_bad(m, o, sizing);
+  }
+  if (s.stop_reason.empty()) s.stop_reason = "iteration limit";
+  if (settle_exact_vertices(m, c, s)) repair_after_settling(m, c, o, s);
   if (o.coarsen) coarsen(m, c, o, s);
   s.exact_left = m.exact_vertex_count();
   for (int v = 0; v < m.vertex_count(); ++v)
