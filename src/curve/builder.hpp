@@ -22,8 +22,6 @@
 #include <limits>
 #include <numbers>
 #include <optional>
-#include <unordered_map>
-#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -55,7 +53,17 @@ bool followable(const TriMesh& m, int a, int b);
 class Builder {
  public:
   Builder(CurvedMesh& out, const mesh::Constraints& c, const Options& o, Stats& s)
-      : out_(out), c_(c), o_(o), s_(s) {}
+      : out_(out),
+        c_(c),
+        o_(o),
+        s_(s),
+        nodes_(out.linear.journal()),
+        triangle_nodes_(out.linear.journal()),
+        vertex_node_(out.linear.journal()),
+        first_node_(out.linear.journal()),
+        curved_(out.linear.journal()),
+        scaled_(out.linear.journal()),
+        fitted_(out.linear.journal()) {}
 
   // Steps 2 to 6 and the statistics; out.nodes, out.triangles and out.lines are filled.
   void run();
@@ -65,18 +73,17 @@ class Builder {
   // step 4's operations add slots and leave dead ones, which finish() drops from both).
 
   // The node of vertex v (a corner).
-  Vec2& at(int v) { return out_.nodes[vertex_node_[v]]; }
-  const Vec2& at(int v) const { return out_.nodes[vertex_node_[v]]; }
+  const Vec2& at(int v) const { return nodes_[vertex_node_[v]]; }
 
   // Triangle t's nodes: order 3's ten, order 2's six.
   geometry::P3Nodes nodes_of(int t) const {
     geometry::P3Nodes p;
-    for (int i = 0; i < 10; ++i) p[i] = out_.nodes[out_.triangles[t][i]];
+    for (int i = 0; i < 10; ++i) p[i] = nodes_[triangle_nodes_[t][i]];
     return p;
   }
   geometry::P2Nodes p2_nodes_of(int t) const {
     geometry::P2Nodes p;
-    for (int i = 0; i < 6; ++i) p[i] = out_.nodes[out_.triangles[t][i]];
+    for (int i = 0; i < 6; ++i) p[i] = nodes_[triangle_nodes_[t][i]];
     return p;
   }
   bool quadratic() const { return o_.order == 2; }
@@ -190,10 +197,22 @@ class Builder {
 
   // ----- local_operations.cpp: step 4, the operations of §4.1 on the curved mesh ---------------
   void improve();
+  // Step 4's operations on triangle t, the first the mesh keeps (try_operation): a swap of one of
+  // its edges, longest first; a collapse; the splits at a corner where curves meet; a split of one
+  // edge; splits of two. Returns 1 if one was kept.
   int improve_triangle(int t);
+  using Edges = std::array<std::array<int, 2>, 3>;
+  Edges longest_first(const mesh::Triangle& tri) const;
+  bool swap_one(const Edges& edges);
+  bool collapse_one(const Edges& edges);
+  bool split_at_junction(const mesh::Triangle& tri);
+  bool split_one(const Edges& edges);
+  bool cut_corner(const mesh::Triangle& tri);
   template <class Operation>
   bool try_operation(const std::vector<int>& before, const Operation& operation, const std::vector<int>& settle = {},
                      double accept_up_to = 0);
+  bool judge_operation(const std::vector<int>& after, const std::vector<double>& known, bool settled,
+                       double worst_before, int invalid_before, double accept_up_to);
   std::optional<std::vector<int>> collapse(int from, int to, const mesh::Constraints& constraints,
                                            const mesh::CollapseTest* also = nullptr);
   void coarsen();
@@ -208,18 +227,6 @@ class Builder {
   bool place_triangle(int t, double* known_energy = nullptr);
 
   // ----- guard.cpp: steps 4 and 5, moves kept only if no worse -------------------------------
-  // Everything the stage holds, to put back a move together with the operations that repaired it.
-  struct State {
-    CurvedMesh out;
-    std::vector<int> vertex_node;
-    std::unordered_map<std::uint64_t, int> first_node;
-    std::unordered_map<std::uint64_t, bool> curved;
-    std::vector<double> scaled;
-    std::unordered_set<std::uint64_t> fitted;
-    Stats stats;
-  };
-  State save_state() const;
-  void restore_state(State&& saved);
   // The vertices within `rings` edges of the centres; the alive triangles at some vertices;
   // their worst energy (worst_over with energy).
   std::vector<int> vertices_near(const std::vector<int>& centres, int rings) const;
@@ -249,14 +256,18 @@ class Builder {
   const mesh::Constraints& c_;
   const Options& o_;
   Stats& s_;
-  // Where each vertex's node is in out_.nodes: the vertex's own index until step 4 adds vertices
+  // The curved form of out_.linear, attached to its journal: whatever takes back a change of the
+  // mesh takes back the nodes with it. Filled into out_.nodes and out_.triangles by finish().
+  mesh::JournaledVector<Vec2> nodes_;  // vertices first (same indices), then the rest
+  // Per triangle slot of out_.linear, its nodes (CurvedMesh::triangles' layout).
+  mesh::JournaledVector<std::array<int, 10>> triangle_nodes_;
+  // Where each vertex's node is in nodes_: the vertex's own index until step 4 adds vertices
   // (finish() puts the vertices first again).
-  std::vector<int> vertex_node_;
-  std::unordered_map<std::uint64_t, int> first_node_;
-  std::unordered_map<std::uint64_t, bool> curved_;
-  std::vector<double> scaled_;  // per triangle: its scaled Jacobian, or −1 if not certified
-  std::unordered_set<std::uint64_t> fitted_;  // primary edges fitted (step 5), not on their curve
-  std::vector<std::uint64_t> new_edges_;      // edges made during the operation being tried
+  mesh::JournaledVector<int> vertex_node_;
+  mesh::JournaledMap<std::uint64_t, int> first_node_;  // per edge, its first inner node
+  mesh::JournaledMap<std::uint64_t, bool> curved_;     // per edge, whether it follows its curve
+  mesh::JournaledVector<double> scaled_;  // per triangle: its scaled Jacobian, or −1 if not certified
+  mesh::JournaledMap<std::uint64_t, bool> fitted_;  // primary edges fitted (step 5), not on their curve
 };
 
 }  // namespace curvemesh::curve::detail

@@ -3,6 +3,7 @@
 #include "curve/curve.hpp"
 
 #include <chrono>
+#include <unordered_map>
 
 #include "curve/builder.hpp"
 
@@ -15,7 +16,7 @@ void Builder::run() {
   // Step 4: smoothing, then the local operations, where the curved triangles are worse than the
   // stop energy.
   s_.max_amips_before_smoothing = 0;
-  for (std::size_t t = 0; t < out_.triangles.size(); ++t)
+  for (std::size_t t = 0; t < triangle_nodes_.size(); ++t)
     s_.max_amips_before_smoothing = std::max(s_.max_amips_before_smoothing, energy(static_cast<int>(t)));
   const TriMesh& m = out_.linear;
   // Primary vertices the linear optimization could not bring onto their curve (Fig. 8): now
@@ -34,8 +35,8 @@ void Builder::run() {
   // worse, else fitted (fit). An earlier edge's repair may have removed a later one.
   for (const auto& [edge, f] : m.sorted_features()) {
     if (f.kind != EdgeKind::primary || !m.feature(edge[0], edge[1])) continue;
-    const auto it = curved_.find(mesh::edge_key(edge[0], edge[1]));
-    if (it != curved_.end() && !it->second && followable(m, edge[0], edge[1])) fit(edge[0], edge[1]);
+    const bool* curved = curved_.find(mesh::edge_key(edge[0], edge[1]));
+    if (curved && !*curved && followable(m, edge[0], edge[1])) fit(edge[0], edge[1]);
   }
   improve();
   project_late();
@@ -54,7 +55,11 @@ void Builder::place_nodes() {
   const TriMesh& m = out_.linear;
   out_.nodes.assign(m.vertex_count(), Vec2::Zero());
   vertex_node_.resize(m.vertex_count());
-  for (int v = 0; v < m.vertex_count(); ++v) out_.nodes[v] = m.point(v), vertex_node_[v] = v;
+  std::vector<Vec2> corners(m.vertex_count());
+  std::vector<int> vertex_node(m.vertex_count());
+  for (int v = 0; v < m.vertex_count(); ++v) corners[v] = m.point(v), vertex_node[v] = v;
+  nodes_.assign(std::move(corners));
+  vertex_node_.assign(std::move(vertex_node));
   // Edge nodes, in the order triangles first meet their edges (deterministic).
   for (int t = 0; t < m.triangle_slots(); ++t) {
     if (!m.alive(t)) continue;
@@ -87,30 +92,30 @@ void Builder::place_nodes() {
     else straighten(tri[curved], tri[(curved + 1) % 3]);
   }
   // Final nodes and centres (triangles that lost their curved edge become straight).
-  scaled_.assign(order.size(), 1.0);
+  scaled_.assign(std::vector<double>(order.size(), 1.0));
   for (std::size_t k = 0; k < order.size(); ++k) {
     const auto& tri = m.triangle(order[k]);
     std::array<int, 10> ids = corner_and_edge_nodes(tri);
     if (quadratic()) {
-      out_.triangles.push_back(ids);
-      if (curved_edge_of(tri) >= 0) scaled_[k] = scaled[k];
-      else scaled_[k] = certify(static_cast<int>(k)).value_or(-1.0);  // its middles are rounded
+      triangle_nodes_.push_back(ids);
+      if (curved_edge_of(tri) >= 0) scaled_.set(k, scaled[k]);
+      else scaled_.set(k, certify(static_cast<int>(k)).value_or(-1.0));  // its middles are rounded
       continue;
     }
-    ids[9] = static_cast<int>(out_.nodes.size());
+    ids[9] = static_cast<int>(nodes_.size());
     if (curved_edge_of(tri) >= 0) {
       s_.alternative_centres += choice[k] > 0;
-      scaled_[k] = scaled[k];
-      out_.nodes.push_back(centre[k]);
+      scaled_.set(k, scaled[k]);
+      nodes_.push_back(centre[k]);
     } else {
-      out_.nodes.push_back((m.point(tri[0]) + m.point(tri[1]) + m.point(tri[2])) / 3);
+      nodes_.push_back((m.point(tri[0]) + m.point(tri[1]) + m.point(tri[2])) / 3);
       // A straight element's nodes are rounded to doubles too: certify it like the others.
       geometry::P3Nodes p;
-      for (int i = 0; i < 10; ++i) p[i] = out_.nodes[ids[i]];
+      for (int i = 0; i < 10; ++i) p[i] = nodes_[ids[i]];
       const auto cert = geometry::certify_jacobian(p);
-      scaled_[k] = cert.verdict == geometry::JacobianVerdict::positive ? cert.scaled_jacobian : -1.0;
+      scaled_.set(k, cert.verdict == geometry::JacobianVerdict::positive ? cert.scaled_jacobian : -1.0);
     }
-    out_.triangles.push_back(ids);
+    triangle_nodes_.push_back(ids);
   }
 }
 
@@ -141,7 +146,7 @@ void Builder::record_statistics() {
     const double distance = distance_to_curve(edge[0], edge[1], f, first, second);
     if (curved_.at(key)) {
       ++s_.curved_edges;
-    } else if (fitted_.count(key)) {
+    } else if (fitted_.contains(key)) {
       ++s_.fitted_edges;
       s_.mean_fit_distance += distance;
     } else {
@@ -160,7 +165,7 @@ void Builder::finish() {
   std::vector<std::array<int, 10>> triangles;
   std::vector<double> scaled;
   for (int t = 0; t < m.triangle_slots(); ++t)
-    if (m.alive(t)) triangles.push_back(out_.triangles[t]), scaled.push_back(scaled_[t]);
+    if (m.alive(t)) triangles.push_back(triangle_nodes_[t]), scaled.push_back(scaled_[t]);
   // Edge data, keyed by the new vertex numbers (the renumbering keeps the vertices' order).
   std::vector<std::pair<std::array<int, 2>, int>> edges;
   for (int t = 0; t < m.triangle_slots(); ++t) {
@@ -172,39 +177,42 @@ void Builder::finish() {
     }
   }
   const std::vector<int> remap = m.compact();
-  std::vector<int> node_id(out_.nodes.size(), -1);
+  std::vector<int> node_id(nodes_.size(), -1);
   int next = 0;
   for (std::size_t v = 0; v < remap.size(); ++v)
     if (remap[v] >= 0) node_id[vertex_node_[v]] = remap[v], ++next;
-  std::vector<char> used(out_.nodes.size(), 0);
+  std::vector<char> used(nodes_.size(), 0);
   for (const auto& ids : triangles)
     for (int id : ids)
       if (id >= 0) used[id] = 1;
-  for (std::size_t id = 0; id < out_.nodes.size(); ++id)
+  for (std::size_t id = 0; id < nodes_.size(); ++id)
     if (used[id] && node_id[id] < 0) node_id[id] = next++;
   std::vector<Vec2> nodes(next);
-  for (std::size_t id = 0; id < out_.nodes.size(); ++id)
-    if (node_id[id] >= 0) nodes[node_id[id]] = out_.nodes[id];
+  for (std::size_t id = 0; id < nodes_.size(); ++id)
+    if (node_id[id] >= 0) nodes[node_id[id]] = nodes_[id];
   for (auto& ids : triangles)
     for (int& id : ids)
       if (id >= 0) id = node_id[id];
   std::unordered_map<std::uint64_t, int> first_node;
-  std::unordered_map<std::uint64_t, bool> curved;
-  std::unordered_set<std::uint64_t> fitted;
+  std::unordered_map<std::uint64_t, bool> curved, fitted;
   for (const auto& [edge, first] : edges) {
     const auto key = mesh::edge_key(edge[0], edge[1]), new_key = mesh::edge_key(remap[edge[0]], remap[edge[1]]);
     first_node[new_key] = node_id[first];
     curved[new_key] = curved_.at(key);
-    if (fitted_.count(key)) fitted.insert(new_key);
+    if (fitted_.contains(key)) fitted[new_key] = true;
   }
-  out_.nodes = std::move(nodes);
-  out_.triangles = std::move(triangles);
-  scaled_ = std::move(scaled);
-  first_node_ = std::move(first_node);
-  curved_ = std::move(curved);
-  fitted_ = std::move(fitted);
-  vertex_node_.resize(m.vertex_count());
-  for (int v = 0; v < m.vertex_count(); ++v) vertex_node_[v] = v;
+  // The statistics read the compacted mesh from out_ (wedges) and from the stores alike.
+  out_.nodes = nodes;
+  out_.triangles = triangles;
+  nodes_.assign(std::move(nodes));
+  triangle_nodes_.assign(std::move(triangles));
+  scaled_.assign(std::move(scaled));
+  first_node_.assign(std::move(first_node));
+  curved_.assign(std::move(curved));
+  fitted_.assign(std::move(fitted));
+  std::vector<int> vertex_node(m.vertex_count());
+  for (int v = 0; v < m.vertex_count(); ++v) vertex_node[v] = v;
+  vertex_node_.assign(std::move(vertex_node));
 }
 
 }  // namespace detail

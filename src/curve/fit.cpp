@@ -57,18 +57,11 @@ void Builder::fit(int a, int b) {
     for (std::size_t k = 0; k < movable.size(); ++k) m.set_position(movable[k], positions[k]);
   };
 
-  // On the curve, with the centres and the free corners moved.
-  std::vector<double> scaled_before;
-  for (int t : touched) scaled_before.push_back(scaled_[t]);
-  const auto take_back = [&] {
-    m.rollback();  // the corners' positions
-    restore(saved);
-    for (std::size_t k = 0; k < touched.size(); ++k) scaled_[touched[k]] = scaled_before[k];
-    curved_[key] = false;
-  };
+  // On the curve, with the centres and the free corners moved, under the journal.
+  const auto take_back = [&] { m.rollback(); };
   const auto on_curve = [&] {
     m.open_journal();
-    curved_[key] = true;
+    curved_.set(key, true);
     place_on_curve(lo, hi);
     for (int t : triangles) choose_centre_of(t);
     for (int v : movable) {
@@ -96,12 +89,12 @@ void Builder::fit(int a, int b) {
   // (Not a structured binding: the lambda below uses them, which clang before 16 refuses.)
   const std::pair<int, int> inner = edge_nodes(lo, hi);
   const int first = inner.first, second = inner.second;
-  const Vec2 straight1 = out_.nodes[first], straight2 = out_.nodes[second];
+  const Vec2 straight1 = nodes_[first], straight2 = nodes_[second];
   place_on_curve(lo, hi);
-  const Vec2 curve1 = out_.nodes[first], curve2 = out_.nodes[second];
+  const Vec2 curve1 = nodes_[first], curve2 = nodes_[second];
   const auto blend = [&](double w) {
-    out_.nodes[first] = straight1 + w * (curve1 - straight1);
-    out_.nodes[second] = straight2 + w * (curve2 - straight2);
+    nodes_.set(first, straight1 + w * (curve1 - straight1));
+    nodes_.set(second, straight2 + w * (curve2 - straight2));
     for (int t : triangles) choose_centre_of(t);
   };
   // certify_all records the scaled Jacobians of each accepted blend: the last one is `good`.
@@ -116,19 +109,19 @@ void Builder::fit(int a, int b) {
     return;
   }
   blend(good);
-  fitted_.insert(key);
+  fitted_.set(key, true);
 }
 
 bool Builder::on_fitted_edge(int v) const {
   if (fitted_.empty()) return false;
   for (int w : out_.linear.neighbours(v))
-    if (fitted_.count(mesh::edge_key(v, w))) return true;
+    if (fitted_.contains(mesh::edge_key(v, w))) return true;
   return false;
 }
 
 int Builder::fitted_edge_of(const mesh::Triangle& tri) const {
   for (int i = 0; i < 3; ++i)
-    if (fitted_.count(mesh::edge_key(tri[i], tri[(i + 1) % 3]))) return i;
+    if (fitted_.contains(mesh::edge_key(tri[i], tri[(i + 1) % 3]))) return i;
   return -1;
 }
 
@@ -137,7 +130,7 @@ int Builder::fitted_edge_of(const mesh::Triangle& tri) const {
 double Builder::distance_to_curve(int a, int b, const mesh::EdgeFeature& f, int first, int second) const {
   const mesh::SectionCurve& curve = c_.sections[f.source];
   const auto [ta, tb] = parameters(f, a, b);
-  const Vec2 &p0 = at(a), &p1 = out_.nodes[first], &p2 = out_.nodes[second], &p3 = at(b);
+  const Vec2 &p0 = at(a), &p1 = nodes_[first], &p2 = nodes_[second], &p3 = at(b);
   double worst = 0;
   for (int i = 0; i <= 16; ++i) {
     const double s = i / 16.0;

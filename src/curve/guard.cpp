@@ -37,20 +37,6 @@ double Builder::worst_of(const std::vector<int>& triangles, double bound) const 
   return worst_over(triangles, [this](int t, double b) { return energy(t, b); }, bound);
 }
 
-Builder::State Builder::save_state() const {
-  return {out_, vertex_node_, first_node_, curved_, scaled_, fitted_, s_};
-}
-
-void Builder::restore_state(State&& saved) {
-  out_ = std::move(saved.out);
-  vertex_node_ = std::move(saved.vertex_node);
-  first_node_ = std::move(saved.first_node);
-  curved_ = std::move(saved.curved);
-  scaled_ = std::move(saved.scaled);
-  fitted_ = std::move(saved.fitted);
-  s_ = saved.stats;
-}
-
 // `move()` makes the move under the mesh's journal (left open) and returns true, or takes itself
 // back and returns false; `undo()` takes a made move back (rolling the journal back). Judged on
 // the triangles at the centres and their neighbours (what the move changes) and, after a repair,
@@ -58,12 +44,12 @@ void Builder::restore_state(State&& saved) {
 // energy, its worst before), and no more of the latter uncertified than before (a move may leave
 // some for the repair). The move alone changes only the first set, so it is judged on that one:
 // the second then holds by itself.
-// When the move alone is worse, it is taken back, everything the stage holds is saved, and the
-// move is made again and followed by up to four rounds of repair: step 4's operations on the
-// triangles there above the stop energy (each kept only if it lowers the worst of what it
-// changes), the centres and their neighbours moved, the centres of the triangles smoothed. Still
-// worse, the saved state comes back. (The mesh's journal has one level, which each operation
-// uses: hence the copy, made only for the few moves that need a repair.)
+// When the move alone is worse, it is taken back, then made again under a journal level of its
+// own and followed by up to four rounds of repair: step 4's operations on the triangles there
+// above the stop energy (each tried and judged in a level inside that one, kept only if it
+// lowers the worst of what it changes), the centres and their neighbours moved, the centres of
+// the triangles smoothed. Still worse, the level is rolled back: the move and its repair go
+// together, and the mesh and its nodes are as they were before the move.
 bool Builder::keep_unless_worse(const std::vector<int>& centres, const std::function<bool()>& move,
                                 const std::function<void()>& undo) {
   TriMesh& m = out_.linear;
@@ -90,9 +76,13 @@ bool Builder::keep_unless_worse(const std::vector<int>& centres, const std::func
   const auto within = [&] {
     return uncertified(wide) <= uncertified_wide && at_most(around, bound_around) && at_most(wide, bound_wide);
   };
-  State saved = save_state();
-  if (!move()) return false;  // it was made once from this very state
-  m.commit();
+  const Stats stats_before = s_;
+  m.open_journal();
+  if (!move()) {  // it was made once from this very state
+    m.commit();
+    return false;
+  }
+  m.commit();  // the move's own level, into the repair's
   bool good = false;
   for (int round = 0; round < 4 && !good; ++round) {
     for (int t : triangles_at(wide))
@@ -107,10 +97,12 @@ bool Builder::keep_unless_worse(const std::vector<int>& centres, const std::func
     good = within();
   }
   if (good) {
+    m.commit();
     ++s_.repaired_moves;
     return true;
   }
-  restore_state(std::move(saved));
+  m.rollback();
+  s_ = stats_before;
   ++s_.refused_moves;
   return false;
 }

@@ -39,14 +39,23 @@ void Builder::improve() {
 }
 
 int Builder::improve_triangle(int t) {
-  TriMesh& m = out_.linear;
-  const mesh::Triangle tri = m.triangle(t);
-  std::array<std::array<int, 2>, 3> edges{{{tri[0], tri[1]}, {tri[1], tri[2]}, {tri[2], tri[0]}}};
+  const mesh::Triangle tri = out_.linear.triangle(t);
+  const Edges edges = longest_first(tri);
+  return swap_one(edges) || collapse_one(edges) || split_at_junction(tri) || split_one(edges) || cut_corner(tri);
+}
+
+Builder::Edges Builder::longest_first(const mesh::Triangle& tri) const {
+  Edges edges{{{tri[0], tri[1]}, {tri[1], tri[2]}, {tri[2], tri[0]}}};
   std::stable_sort(edges.begin(), edges.end(), [&](const auto& x, const auto& y) {
     return (at(x[0]) - at(x[1])).squaredNorm() > (at(y[0]) - at(y[1])).squaredNorm();
   });
-  // The loops name the ends without structured bindings: the lambdas use them, which clang
-  // before 16 refuses.
+  return edges;
+}
+
+// The loops below name the ends without structured bindings: the lambdas use them, which clang
+// before 16 refuses.
+bool Builder::swap_one(const Edges& edges) {
+  TriMesh& m = out_.linear;
   for (const auto& edge : edges) {
     const int a = edge[0], b = edge[1];
     if (m.feature(a, b)) continue;
@@ -56,25 +65,34 @@ int Builder::improve_triangle(int t) {
           return changed;
         })) {
       ++s_.curved_swaps;
-      return 1;
+      return true;
     }
   }
+  return false;
+}
+
+bool Builder::collapse_one(const Edges& edges) {
+  TriMesh& m = out_.linear;
   for (const auto& edge : edges)
     for (const auto& ends : {std::pair{edge[0], edge[1]}, std::pair{edge[1], edge[0]}}) {
       const int from = ends.first, to = ends.second;
       const std::vector<int> star = m.triangles_of(from);  // a copy: the collapse changes the list
       if (try_operation(star, [&] { return collapse(from, to, c_); })) {
         ++s_.curved_collapses;
-        return 1;
+        return true;
       }
     }
-  const auto split = [&](int a, int b) { return split_on_curve(a, b); };
-  // A fixed vertex where curves meet: every edge there split at once, its free neighbours then
-  // moved. Two curved edges leaving a vertex have at least two triangles between them (a
-  // triangle has one curved edge at most); where the curves bend towards each other, their
-  // sides bulge into those triangles, and no smoothing of a vertex between them undoes it.
-  // Halving the edges at the vertex grades the mesh towards it: the bulge of a curved edge
-  // shrinks like h²κ, and the triangles there approach straight wedges.
+  return false;
+}
+
+// A fixed corner of the triangle where curves meet: every edge there split at once, its free
+// neighbours then moved. Two curved edges leaving a vertex have at least two triangles between
+// them (a triangle has one curved edge at most); where the curves bend towards each other, their
+// sides bulge into those triangles, and no smoothing of a vertex between them undoes it. Halving
+// the edges at the vertex grades the mesh towards it: the bulge of a curved edge shrinks like h²κ,
+// and the triangles there approach straight wedges.
+bool Builder::split_at_junction(const mesh::Triangle& tri) {
+  TriMesh& m = out_.linear;
   for (int i = 0; i < 3; ++i) {
     const int v = tri[i];
     if (m.tag(v).kind != mesh::VertexKind::fixed) continue;
@@ -85,52 +103,60 @@ int Builder::improve_triangle(int t) {
     std::vector<int> movable, before = sorted_union(m.triangles_of(v), {});
     for (int w : ends)
       if (m.tag(w).kind == mesh::VertexKind::free) movable.push_back(w), before = sorted_union(before, m.triangles_of(w));
-    if (try_operation(
-            before,
-            [&]() -> std::optional<std::vector<int>> {
-              std::vector<int> made;
-              for (int w : ends) {
-                const int mid = split(v, w);
-                if (mid < 0) return std::nullopt;
-                made = sorted_union(made, m.triangles_of(mid));
-              }
-              for (int w : movable) made = sorted_union(made, m.triangles_of(w));
-              return made;
-            },
-            movable)) {
+    const auto split_all = [&]() -> std::optional<std::vector<int>> {
+      std::vector<int> made;
+      for (int w : ends) {
+        const int mid = split_on_curve(v, w);
+        if (mid < 0) return std::nullopt;
+        made = sorted_union(made, m.triangles_of(mid));
+      }
+      for (int w : movable) made = sorted_union(made, m.triangles_of(w));
+      return made;
+    };
+    if (try_operation(before, split_all, movable)) {
       s_.curved_splits += static_cast<int>(ends.size());
-      return 1;
+      return true;
     }
   }
-  // Splits: one edge, or two (the triangle's corner between them cut off: a thin corner
-  // between a curve and another feature needs both its sides shortened), the new vertices
-  // moved where their stars are best before the outcome is judged.
+  return false;
+}
+
+// A split of one edge, its new vertex moved where its star is best before the outcome is judged.
+bool Builder::split_one(const Edges& edges) {
+  TriMesh& m = out_.linear;
   for (const auto& edge : edges) {
     const int a = edge[0], b = edge[1];
     if (try_operation(m.edge_triangles(a, b), [&]() -> std::optional<std::vector<int>> {
-          const int mid = split(a, b);
+          const int mid = split_on_curve(a, b);
           if (mid < 0) return std::nullopt;
           return m.triangles_of(mid);
         })) {
       ++s_.curved_splits;
-      return 1;
+      return true;
     }
   }
+  return false;
+}
+
+// Splits of two edges, the triangle's corner between them cut off: a thin corner between a curve
+// and another feature needs both its sides shortened.
+bool Builder::cut_corner(const mesh::Triangle& tri) {
+  TriMesh& m = out_.linear;
   for (int i = 0; i < 3; ++i) {
     // The corner tri[i] between edges (tri[i], tri[i+1]) and (tri[i+2], tri[i]).
     const int a = tri[i], b = tri[(i + 1) % 3], c = tri[(i + 2) % 3];
     const std::vector<int> before = sorted_union(m.edge_triangles(a, b), m.edge_triangles(c, a));
     if (try_operation(before, [&]() -> std::optional<std::vector<int>> {
-          const int m1 = split(a, b);
-          const int m2 = m1 < 0 ? -1 : split(c, a);
+          const int m1 = split_on_curve(a, b);
+          const int m2 = m1 < 0 ? -1 : split_on_curve(c, a);
           if (m2 < 0) return std::nullopt;
           return sorted_union(m.triangles_of(m1), m.triangles_of(m2));
         })) {
       s_.curved_splits += 2;
-      return 1;
+      return true;
     }
   }
-  return 0;
+  return false;
 }
 
 // Tries a local operation of the linear mesh on the curved mesh. `operation` changes
@@ -150,91 +176,72 @@ bool Builder::try_operation(const std::vector<int>& before, const Operation& ope
   double worst_before = 0;
   int invalid_before = 0;
   std::vector<std::uint64_t> old_edges;
-  struct Saved {
-    int t;
-    std::array<int, 10> ids;
-    double scaled;
-  };
-  std::vector<Saved> saved;
   for (int t : before) {
     worst_before = std::max(worst_before, energy(t));
     invalid_before += scaled_[t] <= 0;
-    saved.push_back({t, out_.triangles[t], scaled_[t]});
     const auto& tri = m.triangle(t);
     for (int i = 0; i < 3; ++i) old_edges.push_back(mesh::edge_key(tri[i], tri[(i + 1) % 3]));
   }
-  const std::size_t nodes0 = out_.nodes.size(), vertices0 = vertex_node_.size(), slots0 = out_.triangles.size();
-  // Vertices in `settle` move existing nodes (their own, their edges'): `before` holds their
-  // triangles, and its nodes go back with the rest.
-  const Snapshot nodes_before = settle.empty() ? Snapshot{} : snapshot(before);
-  const int moves0 = s_.smoothing_moves;
-  new_edges_.clear();
+  const int vertices0 = m.vertex_count(), moves0 = s_.smoothing_moves;
+  // The journal takes back the mesh and its nodes alike: those of the new triangles and
+  // vertices, and the existing ones the vertices in `settle` move (their own, their edges').
   m.open_journal();
   const std::optional<std::vector<int>> after = operation();
   bool ok = after.has_value();
   if (ok) {
-    for (int v = static_cast<int>(vertices0); v < m.vertex_count(); ++v) {
-      vertex_node_.push_back(static_cast<int>(out_.nodes.size()));
-      out_.nodes.push_back(m.point(v));
+    for (int v = vertices0; v < m.vertex_count(); ++v) {
+      vertex_node_.push_back(static_cast<int>(nodes_.size()));
+      nodes_.push_back(m.point(v));
     }
-    out_.triangles.resize(m.triangle_slots());
+    triangle_nodes_.resize(m.triangle_slots());
     scaled_.resize(m.triangle_slots(), -1.0);
     // The energies placing the centres found (NaN where none), good while no vertex settles.
     std::vector<double> known(after->size(), std::numeric_limits<double>::quiet_NaN());
     for (std::size_t k = 0; k < after->size(); ++k) ok = ok && place_triangle((*after)[k], &known[k]);
-    const bool settled = m.vertex_count() > static_cast<int>(vertices0) || !settle.empty();
-    for (int v = static_cast<int>(vertices0); ok && v < m.vertex_count(); ++v) settle_vertex(v, *after);
+    const bool settled = m.vertex_count() > vertices0 || !settle.empty();
+    for (int v = vertices0; ok && v < m.vertex_count(); ++v) settle_vertex(v, *after);
     for (int v : settle)
       if (ok) settle_vertex(v, *after);
-    if (ok) {
-      // The energies first: where nothing before was uncertified, a triangle above both the worst
-      // before and accept_up_to refuses the operation, and no certificate need be made. Only
-      // whether the worst after is below the worst before or at most accept_up_to counts, so
-      // each energy need only be exact below the larger of the two.
-      const double bound = std::nextafter(std::max(worst_before, accept_up_to), std::numeric_limits<double>::infinity());
-      double worst_after = 0;
-      for (std::size_t k = 0; k < after->size(); ++k) {
-        const int t = (*after)[k];
-        worst_after = std::max(worst_after, !settled && !std::isnan(known[k]) ? known[k] : energy(t, bound));
-        if (invalid_before == 0 && worst_after >= worst_before && worst_after > accept_up_to) {
-          ok = false;
-          break;
-        }
-      }
-      if (ok) {
-        int invalid_after = 0;
-        std::vector<std::optional<double>> certified;
-        for (int t : *after) {
-          certified.push_back(certify(t));
-          invalid_after += !certified.back();
-        }
-        ok = invalid_after < invalid_before ||
-             (invalid_after == 0 && (worst_after < worst_before || worst_after <= accept_up_to));
-        if (ok)
-          for (std::size_t k = 0; k < after->size(); ++k) scaled_[(*after)[k]] = certified[k].value_or(-1.0);
-      }
-    }
+    ok = ok && judge_operation(*after, known, settled, worst_before, invalid_before, accept_up_to);
   }
   if (!ok) {
     m.rollback();
-    for (const auto key : new_edges_) first_node_.erase(key), curved_.erase(key);
-    out_.nodes.resize(nodes0);
-    vertex_node_.resize(vertices0);
-    out_.triangles.resize(slots0);
-    scaled_.resize(slots0);
-    for (const Saved& x : saved) out_.triangles[x.t] = x.ids, scaled_[x.t] = x.scaled;
-    restore(nodes_before);
     s_.smoothing_moves = moves0;
-    new_edges_.clear();
     return false;
   }
   m.commit();
-  new_edges_.clear();
   // Edges the operation removed lose their nodes (a later operation may make them again).
   for (const auto key : old_edges) {
     const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
     if (m.edge_triangles(a, b).empty()) first_node_.erase(key), curved_.erase(key), fitted_.erase(key);
   }
+  return true;
+}
+
+// Whether the triangles an operation made are kept (try_operation), their scaled Jacobians
+// recorded if so. The energies first: where nothing before was uncertified, a triangle above both
+// the worst before and accept_up_to refuses the operation, and no certificate need be made. Only
+// whether the worst after is below the worst before or at most accept_up_to counts, so each
+// energy need only be exact below the larger of the two.
+bool Builder::judge_operation(const std::vector<int>& after, const std::vector<double>& known, bool settled,
+                              double worst_before, int invalid_before, double accept_up_to) {
+  const double bound = std::nextafter(std::max(worst_before, accept_up_to), std::numeric_limits<double>::infinity());
+  double worst_after = 0;
+  for (std::size_t k = 0; k < after.size(); ++k) {
+    const int t = after[k];
+    worst_after = std::max(worst_after, !settled && !std::isnan(known[k]) ? known[k] : energy(t, bound));
+    if (invalid_before == 0 && worst_after >= worst_before && worst_after > accept_up_to) return false;
+  }
+  int invalid_after = 0;
+  std::vector<std::optional<double>> certified;
+  for (int t : after) {
+    certified.push_back(certify(t));
+    invalid_after += !certified.back();
+  }
+  if (!(invalid_after < invalid_before ||
+        (invalid_after == 0 && (worst_after < worst_before || worst_after <= accept_up_to))))
+    return false;
+  for (std::size_t k = 0; k < after.size(); ++k) scaled_.set(after[k], certified[k].value_or(-1.0));
   return true;
 }
 
@@ -273,10 +280,10 @@ bool Builder::place_triangle(int t, double* known_energy) {
   for (int i = 0; i < 3; ++i) add_edge(tri[i], tri[(i + 1) % 3]);
   std::array<int, 10> ids = corner_and_edge_nodes(tri);
   if (!quadratic()) {
-    ids[9] = static_cast<int>(out_.nodes.size());
-    out_.nodes.push_back((at(tri[0]) + at(tri[1]) + at(tri[2])) / 3);
+    ids[9] = static_cast<int>(nodes_.size());
+    nodes_.push_back((at(tri[0]) + at(tri[1]) + at(tri[2])) / 3);
   }
-  out_.triangles[t] = ids;
+  triangle_nodes_.set(t, ids);
   const double e = curved_edge_of(tri) >= 0 ? choose_centre_of(t) : std::numeric_limits<double>::quiet_NaN();
   if (known_energy) *known_energy = e;
   return true;
@@ -327,8 +334,8 @@ void Builder::coarsen() {
     return mesh::collapse_keeps_edges_short(m, from, to, [&](int, int) { return mesh::kCoarseningScale * l; });
   };
   const auto curved = [&](int a, int b) {
-    const auto it = curved_.find(mesh::edge_key(a, b));
-    return it != curved_.end() && it->second;
+    const bool* c = curved_.find(mesh::edge_key(a, b));
+    return c && *c;
   };
   // After the first round only edges at a vertex whose star the last round changed: a collapse
   // reads the star of the vertex it removes alone, so one refused on unchanged stars is refused

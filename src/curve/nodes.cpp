@@ -19,14 +19,13 @@ bool followable(const TriMesh& m, int a, int b) {
 
 void Builder::add_edge(int a, int b) {
   const auto key = mesh::edge_key(a, b);
-  if (first_node_.count(key)) return;
-  new_edges_.push_back(key);
+  if (first_node_.contains(key)) return;
   const int lo = std::min(a, b), hi = std::max(a, b);
-  first_node_[key] = static_cast<int>(out_.nodes.size());
-  out_.nodes.push_back(Vec2::Zero());
-  if (!quadratic()) out_.nodes.push_back(Vec2::Zero());
+  first_node_.set(key, static_cast<int>(nodes_.size()));
+  nodes_.push_back(Vec2::Zero());
+  if (!quadratic()) nodes_.push_back(Vec2::Zero());
   const bool curved = followable(out_.linear, lo, hi);
-  curved_[key] = curved;
+  curved_.set(key, curved);
   if (curved) place_on_curve(lo, hi); else place_straight(lo, hi);
 }
 
@@ -34,11 +33,11 @@ void Builder::place_straight(int lo, int hi) {
   const int n = first_node_.at(mesh::edge_key(lo, hi));
   const Vec2 &a = at(lo), &b = at(hi);
   if (quadratic()) {
-    out_.nodes[n] = (a + b) / 2;
+    nodes_.set(n, (a + b) / 2);
     return;
   }
-  out_.nodes[n] = (2 * a + b) / 3;
-  out_.nodes[n + 1] = (a + 2 * b) / 3;
+  nodes_.set(n, (2 * a + b) / 3);
+  nodes_.set(n + 1, (a + 2 * b) / 3);
 }
 
 // App. C: the curve at 1/3 and 2/3 of the edge's parameter interval, where the cubic map then
@@ -50,17 +49,17 @@ void Builder::place_on_curve(int lo, int hi) {
   const mesh::SectionCurve& curve = c_.sections[f.source];
   const int n = first_node_.at(mesh::edge_key(lo, hi));
   if (quadratic()) {
-    out_.nodes[n] = curve.eval(0.5 * (f.t_lo + f.t_hi));
+    nodes_.set(n, curve.eval(0.5 * (f.t_lo + f.t_hi)));
     return;
   }
-  out_.nodes[n] = curve.eval((2 * f.t_lo + f.t_hi) / 3);
-  out_.nodes[n + 1] = curve.eval((f.t_lo + 2 * f.t_hi) / 3);
+  nodes_.set(n, curve.eval((2 * f.t_lo + f.t_hi) / 3));
+  nodes_.set(n + 1, curve.eval((f.t_lo + 2 * f.t_hi) / 3));
 }
 
 void Builder::straighten(int a, int b) {
   const auto key = mesh::edge_key(a, b);
   if (!curved_.at(key)) return;
-  curved_[key] = false;
+  curved_.set(key, false);
   place_straight(std::min(a, b), std::max(a, b));
 }
 
@@ -100,7 +99,7 @@ int Builder::curved_edge_of(const mesh::Triangle& tri) const {
 geometry::P3Nodes Builder::element(const mesh::Triangle& tri) const {
   const std::array<int, 10> ids = corner_and_edge_nodes(tri);
   geometry::P3Nodes p;
-  for (int i = 0; i < 9; ++i) p[i] = out_.nodes[ids[i]];
+  for (int i = 0; i < 9; ++i) p[i] = nodes_[ids[i]];
   p[9] = (p[0] + p[1] + p[2]) / 3;
   return p;
 }
@@ -108,7 +107,7 @@ geometry::P3Nodes Builder::element(const mesh::Triangle& tri) const {
 geometry::P2Nodes Builder::p2_element(const mesh::Triangle& tri) const {
   const std::array<int, 10> ids = corner_and_edge_nodes(tri);
   geometry::P2Nodes p;
-  for (int i = 0; i < 6; ++i) p[i] = out_.nodes[ids[i]];
+  for (int i = 0; i < 6; ++i) p[i] = nodes_[ids[i]];
   return p;
 }
 
@@ -167,21 +166,19 @@ double Builder::choose_centre_of(int t) {
     return v.min_det > 0 ? v.max_amips : std::numeric_limits<double>::quiet_NaN();
   }
   geometry::P3Nodes q = nodes_of(t);
-  Vec2& centre = out_.nodes[out_.triangles[t][9]];
   double best = std::numeric_limits<double>::infinity();
   double energy = std::numeric_limits<double>::quiet_NaN();
+  std::optional<Vec2> chosen;
   for (const Vec2& c : geometry::p3_centre_candidates(q)) {
-    const Vec2 keep = centre;
-    centre = c;
     q[9] = c;
     const geometry::P3LatticeValues v = geometry::p3_lattice_values(q);
     if (const double b = badness_of(q, v); b < best) {
       best = b;
       energy = v.min_det > 0 ? v.max_amips : std::numeric_limits<double>::quiet_NaN();
-    } else {
-      centre = keep;
+      chosen = c;
     }
   }
+  if (chosen) nodes_.set(triangle_nodes_[t][9], *chosen);
   return energy;
 }
 
@@ -204,20 +201,20 @@ bool Builder::certify_all(const std::vector<int>& triangles) {
     if (!cert) return false;
     scaled.push_back(*cert);
   }
-  for (std::size_t k = 0; k < triangles.size(); ++k) scaled_[triangles[k]] = scaled[k];
+  for (std::size_t k = 0; k < triangles.size(); ++k) scaled_.set(triangles[k], scaled[k]);
   return true;
 }
 
 Builder::Snapshot Builder::snapshot(const std::vector<int>& triangles) const {
   Snapshot saved;
   for (int t : triangles)
-    for (int id : out_.triangles[t])
-      if (id >= 0) saved.push_back({id, out_.nodes[id]});
+    for (int id : triangle_nodes_[t])
+      if (id >= 0) saved.push_back({id, nodes_[id]});
   return saved;
 }
 
 void Builder::restore(const Snapshot& saved) {
-  for (const auto& [id, x] : saved) out_.nodes[id] = x;
+  for (const auto& [id, x] : saved) nodes_.set(id, x);
 }
 
 }  // namespace curvemesh::curve::detail

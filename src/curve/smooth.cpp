@@ -20,7 +20,7 @@ void Builder::smooth() {
 // The alive triangles above the stop energy, worst first.
 std::vector<int> Builder::bad_triangles() const {
   std::vector<std::pair<double, int>> bad;
-  for (std::size_t t = 0; t < out_.triangles.size(); ++t)
+  for (std::size_t t = 0; t < triangle_nodes_.size(); ++t)
     if (out_.linear.alive(static_cast<int>(t)))
       if (const double e = energy(static_cast<int>(t)); e > o_.stop_amips) bad.push_back({-e, static_cast<int>(t)});
   std::sort(bad.begin(), bad.end());
@@ -64,10 +64,10 @@ int Builder::move_corner(int v) {
 // (straight: the centroid; curved: the candidate of lowest badness, certified later; order 2 has
 // none).
 void Builder::place_corner(int v, const Vec2& p) {
-  at(v) = p;
+  nodes_.set(vertex_node_[v], p);
   const TriMesh& m = out_.linear;
   for (int t : m.triangles_of(v)) {
-    const auto& ids = out_.triangles[t];
+    const auto& ids = triangle_nodes_[t];
     const auto& tri = m.triangle(t);
     for (int i = 0; i < 3; ++i) {
       const int a = tri[i], b = tri[(i + 1) % 3];
@@ -77,13 +77,13 @@ void Builder::place_corner(int v, const Vec2& p) {
       } else if (quadratic()) {
         place_straight(std::min(a, b), std::max(a, b));
       } else {
-        out_.nodes[ids[3 + 2 * i]] = (2 * at(a) + at(b)) / 3;
-        out_.nodes[ids[4 + 2 * i]] = (at(a) + 2 * at(b)) / 3;
+        nodes_.set(ids[3 + 2 * i], (2 * at(a) + at(b)) / 3);
+        nodes_.set(ids[4 + 2 * i], (at(a) + 2 * at(b)) / 3);
       }
     }
     if (quadratic()) continue;
     if (curved_edge_of(tri) < 0) {
-      out_.nodes[ids[9]] = (at(tri[0]) + at(tri[1]) + at(tri[2])) / 3;
+      nodes_.set(ids[9], (at(tri[0]) + at(tri[1]) + at(tri[2])) / 3);
       continue;
     }
     choose_centre_of(t);
@@ -196,17 +196,9 @@ int Builder::project(int v) {
   const std::vector<int> neighbours = m.neighbours(v);
   const std::vector<int> region = triangles_at(vertices_near({v}, 1));  // what the move changes
   const double allowed = std::max(o_.stop_amips, worst_of(region));
-  std::vector<double> scaled_before;
-  for (int u : region) scaled_before.push_back(scaled_[u]);
-  const Snapshot saved = snapshot(region);
-  const std::array<std::uint64_t, 2> curve_edges{mesh::edge_key(v, n.x), mesh::edge_key(v, n.y)};
-  const std::array<bool, 2> curved_before{curved_.at(curve_edges[0]), curved_.at(curve_edges[1])};
   const int moves_before = s_.smoothing_moves;
   const auto undo = [&] {
-    m.rollback();  // v's tag and position, its curve edges' parameters, the neighbours' positions
-    restore(saved);
-    for (std::size_t k = 0; k < region.size(); ++k) scaled_[region[k]] = scaled_before[k];
-    for (int k = 0; k < 2; ++k) curved_[curve_edges[k]] = curved_before[k];
+    m.rollback();  // v and its curve edges, the neighbours and every node moved, the certificates
     s_.smoothing_moves = moves_before;
   };
   // v on the curve at t, its edges along the curve curved where they can follow it, under the
@@ -216,7 +208,7 @@ int Builder::project(int v) {
     mesh::VertexTag tag = tag0;
     tag.on_curve = true;
     m.set_tag(v, tag);
-    for (int w : {n.x, n.y}) curved_[mesh::edge_key(v, w)] = followable(m, v, w);
+    for (int w : {n.x, n.y}) curved_.set(mesh::edge_key(v, w), followable(m, v, w));
     place_on_curve_at(v, n, t);
   };
   const auto move_to = [&](double t) {
@@ -226,7 +218,7 @@ int Builder::project(int v) {
       if (!certify_all(m.triangles_of(v))) {
         // A curved edge that bulges into a triangle: left to the repair by the operations, which
         // keep any change that leaves fewer triangles uncertified.
-        for (int u : m.triangles_of(v)) scaled_[u] = certify(u).value_or(-1.0);
+        for (int u : m.triangles_of(v)) scaled_.set(u, certify(u).value_or(-1.0));
         return true;
       }
       for (int round = 0; round < 2 && worst_of(region) > allowed; ++round) {
@@ -280,8 +272,8 @@ int Builder::smooth_corner(int v) {
 
 int Builder::smooth_centre(int t) {
   if (quadratic()) return 0;  // no centre node: the map is its edges'
-  auto& centre = out_.nodes[out_.triangles[t][9]];
-  const Vec2 x0 = centre;
+  const int id = triangle_nodes_[t][9];
+  const Vec2 x0 = nodes_[id];
   const double before = energy(t);
   geometry::P3Nodes q = nodes_of(t);
   double size = 0;
@@ -292,13 +284,13 @@ int Builder::smooth_centre(int t) {
   });
   q[9] = x;
   if (x == x0 || !(geometry::p3_max_amips(q) < before)) return 0;
-  centre = x;
+  nodes_.set(id, x);
   const auto cert = certify(t);
   if (!cert) {
-    centre = x0;
+    nodes_.set(id, x0);
     return 0;
   }
-  scaled_[t] = *cert;
+  scaled_.set(t, *cert);
   return 1;
 }
 

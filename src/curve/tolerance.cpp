@@ -134,8 +134,8 @@ double Builder::deviation(int a, int b) const {
   const mesh::EdgeFeature& f = *out_.linear.feature(a, b);
   if (curved_.at(mesh::edge_key(a, b))) return curved_deviation(a, b);
   const auto [first, second] = edge_nodes(a, b);
-  std::vector<Vec2> nodes{at(a), at(b), out_.nodes[first]};
-  if (!quadratic()) nodes.push_back(out_.nodes[second]);
+  std::vector<Vec2> nodes{at(a), at(b), nodes_[first]};
+  if (!quadratic()) nodes.push_back(nodes_[second]);
   return edge_distance(nodes, c_.sections[f.source], a < b ? f.t_lo : f.t_hi, a < b ? f.t_hi : f.t_lo);
 }
 

@@ -66,16 +66,16 @@ class JournaledVector final : public JournalMember {
   const std::vector<T>& values() const { return values_; }
 
   void set(std::size_t i, const T& value) {
-    if (journal_.recording()) log_.push_back({i, values_[i], false});
+    if (journal_.recording()) log_.push_back({i, values_[i]});
     values_[i] = value;
   }
   void push_back(const T& value) {
-    if (journal_.recording()) log_.push_back({values_.size(), T{}, true});
+    if (journal_.recording()) log_.push_back({values_.size(), std::nullopt});
     values_.push_back(value);
   }
   void resize(std::size_t n, const T& fill = T{}) {
     while (values_.size() > n) {
-      if (journal_.recording()) log_.push_back({values_.size() - 1, values_.back(), false});
+      if (journal_.recording()) log_.push_back({values_.size() - 1, values_.back()});
       values_.pop_back();
     }
     while (values_.size() < n) push_back(fill);
@@ -90,9 +90,9 @@ class JournaledVector final : public JournalMember {
   void undo_to(std::size_t length) override {
     while (log_.size() > length) {
       Entry& e = log_.back();
-      if (e.pushed) values_.pop_back();
-      else if (e.index == values_.size()) values_.push_back(std::move(e.old));  // a pop taken back
-      else values_[e.index] = std::move(e.old);
+      if (!e.old) values_.pop_back();
+      else if (e.index == values_.size()) values_.push_back(std::move(*e.old));  // a pop taken back
+      else values_[e.index] = std::move(*e.old);
       log_.pop_back();
     }
   }
@@ -101,8 +101,7 @@ class JournaledVector final : public JournalMember {
  private:
   struct Entry {
     std::size_t index;
-    T old;
-    bool pushed;  // the entry added values_[index]; otherwise `old` was there (or was popped from there)
+    std::optional<T> old;  // what was at `index` (set or popped), or nothing: the entry pushed it
   };
   Journal& journal_;
   std::vector<T> values_;
