@@ -28,6 +28,7 @@
 #include "curve/curve.hpp"
 #include "geometry/p2_triangle.hpp"
 #include "geometry/p3_triangle.hpp"
+#include "mesh/curved_element.hpp"
 #include "mesh/invariants.hpp"
 #include "mesh/operations.hpp"  // CollapseTest
 
@@ -46,8 +47,7 @@ int split_until_one_primary_edge(TriMesh& m, const mesh::Constraints& c);
 // would be beyond Options::tolerance are split as step 1 splits; returns the number of splits.
 int split_beyond_tolerance(TriMesh& m, const mesh::Constraints& c, const Options& o);
 
-// Whether the edge can follow its curve: both ends lie on it at their recorded parameters.
-bool followable(const TriMesh& m, int a, int b);
+using mesh::followable;
 
 // Steps 2 to 6 on the linear mesh after step 1 (out.linear, compacted).
 class Builder {
@@ -102,6 +102,7 @@ class Builder {
   void add_edge(int a, int b);
   void place_straight(int lo, int hi);
   void place_on_curve(int lo, int hi);
+  void place_inner_nodes(int lo, int hi, const std::array<Vec2, 2>& inner);
   void straighten(int a, int b);
   std::array<int, 10> corner_and_edge_nodes(const mesh::Triangle& tri) const;
   std::pair<int, int> edge_nodes(int a, int b) const;

@@ -7,16 +7,6 @@
 
 namespace curvemesh::curve::detail {
 
-// Whether the edge can follow its curve: both ends lie on it at their recorded parameters.
-bool followable(const TriMesh& m, int a, int b) {
-  if (!is_primary(m, a, b)) return false;
-  for (int v : {a, b}) {
-    const mesh::VertexTag& tag = m.tag(v);
-    if (tag.kind == mesh::VertexKind::primary && !tag.on_curve) return false;
-  }
-  return true;
-}
-
 void Builder::add_edge(int a, int b) {
   const auto key = mesh::edge_key(a, b);
   if (first_node_.contains(key)) return;
@@ -30,30 +20,19 @@ void Builder::add_edge(int a, int b) {
 }
 
 void Builder::place_straight(int lo, int hi) {
-  const int n = first_node_.at(mesh::edge_key(lo, hi));
-  const Vec2 &a = at(lo), &b = at(hi);
-  if (quadratic()) {
-    nodes_.set(n, (a + b) / 2);
-    return;
-  }
-  nodes_.set(n, (2 * a + b) / 3);
-  nodes_.set(n + 1, (a + 2 * b) / 3);
+  place_inner_nodes(lo, hi, mesh::nodes_on_chord(at(lo), at(hi), o_.order));
 }
 
-// App. C: the curve at 1/3 and 2/3 of the edge's parameter interval, where the cubic map then
-// reproduces the curve exactly. Order 2: the curve at the middle of the interval, where the
-// quadratic's distance from the curve is smallest along the parameter (quadratic_deviation: the
-// difference is odd about the middle, and moving the node adds an even term to it).
+// On the curve as mesh::nodes_on_curve places them (App. C).
 void Builder::place_on_curve(int lo, int hi) {
   const mesh::EdgeFeature& f = *out_.linear.feature(lo, hi);
-  const mesh::SectionCurve& curve = c_.sections[f.source];
+  place_inner_nodes(lo, hi, mesh::nodes_on_curve(c_.sections[f.source], f.t_lo, f.t_hi, o_.order));
+}
+
+void Builder::place_inner_nodes(int lo, int hi, const std::array<Vec2, 2>& inner) {
   const int n = first_node_.at(mesh::edge_key(lo, hi));
-  if (quadratic()) {
-    nodes_.set(n, curve.eval(0.5 * (f.t_lo + f.t_hi)));
-    return;
-  }
-  nodes_.set(n, curve.eval((2 * f.t_lo + f.t_hi) / 3));
-  nodes_.set(n + 1, curve.eval((f.t_lo + 2 * f.t_hi) / 3));
+  nodes_.set(n, inner[0]);
+  if (!quadratic()) nodes_.set(n + 1, inner[1]);
 }
 
 void Builder::straighten(int a, int b) {

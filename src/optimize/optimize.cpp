@@ -11,6 +11,7 @@
 #include "base/limits.hpp"
 #include "geometry/amips.hpp"
 #include "geometry/p3_triangle.hpp"
+#include "mesh/curved_element.hpp"
 #include "mesh/operations.hpp"
 
 namespace curvemesh::optimize {
@@ -217,31 +218,12 @@ Quality measure(const TriMesh& m, bool mean_edge_length) {
 
 namespace {
 
-// The energy triangle t would have once curved, as the curve stage first makes it: its primary
-// edge on the curve (nodes at the thirds of its parameter interval), the best of the stage's
-// three centres. 0 for a triangle with no primary edge, or more than one (the curve stage splits
-// it), or one with an end off its curve (the stage leaves that edge straight): the linear energy
-// judges those.
+// The energy triangle t would have once curved, as the curve stage first makes it
+// (mesh::curved_element), with the best of the stage's three centres. 0 for a triangle the curve
+// stage does not bend (mesh::followed_edge): the linear energy judges those.
 double curved_energy(const TriMesh& m, const mesh::Constraints& c, int t) {
-  const mesh::Triangle& tri = m.triangle(t);
-  int curved = -1;
-  for (int i = 0; i < 3; ++i) {
-    const mesh::EdgeFeature* f = m.feature(tri[i], tri[(i + 1) % 3]);
-    if (!f || f->kind != mesh::EdgeKind::primary) continue;
-    if (curved >= 0) return 0;
-    curved = i;
-  }
-  if (curved < 0) return 0;
-  const int a = tri[curved], b = tri[(curved + 1) % 3];
-  for (int v : {a, b})
-    if (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) return 0;
-  const mesh::EdgeFeature& f = *m.feature(a, b);
-  const double ta = a < b ? f.t_lo : f.t_hi, tb = a < b ? f.t_hi : f.t_lo;
-  // The corners turned so that the curved edge is the first (nodes 3 and 4).
-  geometry::P3Nodes p = geometry::p3_straight_nodes(m.point(a), m.point(b), m.point(tri[(curved + 2) % 3]));
-  const mesh::SectionCurve& s = c.sections[f.source];
-  p[3] = s.eval(ta + (tb - ta) / 3);
-  p[4] = s.eval(ta + 2 * (tb - ta) / 3);
+  if (mesh::followed_edge(m, m.triangle(t)) < 0) return 0;
+  geometry::P3Nodes p = mesh::curved_element(m, c, t);
   double best = std::numeric_limits<double>::infinity();
   for (const Vec2& centre : geometry::p3_centre_candidates(p)) {
     p[9] = centre;

@@ -13,6 +13,8 @@
 #include <stdexcept>
 
 #include "grid_fixture.hpp"
+#include "geometry/p3_triangle.hpp"
+#include "mesh/curved_element.hpp"
 #include "mesh/operations.hpp"
 
 namespace curvemesh::mesh {
@@ -389,6 +391,41 @@ TEST(MeshOperations, NestedJournalLevelsRollBackAlone) {
   EXPECT_GT(committed, 20);
   EXPECT_EQ(deepest, 4);
   EXPECT_THROW(f.mesh.commit(), std::logic_error);
+}
+
+// The element the curve stage starts from and the optimization foresees (mesh::curved_element):
+// along the followed edge its map is the curve itself, at the matching parameter (the section is
+// a cubic in its parameter, and the nodes at its thirds make the P3 edge reproduce it), whichever
+// way the triangle runs along the edge; along every other edge it is the chord.
+TEST(MeshOperations, TheCurvedElementFollowsItsCurveAndNothingElse) {
+  Fixture f = make_grid(9, 3);
+  const std::array<Vec2, 3> reference{Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
+  int followed = 0, straight = 0, forwards = 0, backwards = 0;
+  for (int t = 0; t < f.mesh.triangle_slots(); ++t) {
+    const mesh::Triangle& tri = f.mesh.triangle(t);
+    const int edge = mesh::followed_edge(f.mesh, tri);
+    const geometry::P3Nodes p = mesh::curved_element(f.mesh, f.constraints, t);
+    for (int i = 0; i < 3; ++i) {
+      const int a = tri[i], b = tri[(i + 1) % 3];
+      for (double s : {0.1, 0.25, 0.5, 0.8}) {
+        const Vec2 x = geometry::p3_map(p, (1 - s) * reference[i].x() + s * reference[(i + 1) % 3].x(),
+                                        (1 - s) * reference[i].y() + s * reference[(i + 1) % 3].y());
+        Vec2 expected = (1 - s) * f.mesh.point(a) + s * f.mesh.point(b);
+        if (i == edge) {
+          const mesh::EdgeFeature& e = *f.mesh.feature(a, b);
+          const double ta = a < b ? e.t_lo : e.t_hi, tb = a < b ? e.t_hi : e.t_lo;
+          expected = f.constraints.sections[e.source].eval(ta + s * (tb - ta));
+        }
+        EXPECT_LE((x - expected).norm(), 1e-12) << "triangle " << t << ", edge " << i << ", s " << s;
+      }
+      if (i == edge) ++followed, (a < b ? forwards : backwards)++;
+      else ++straight;
+    }
+  }
+  EXPECT_GT(followed, 10);
+  EXPECT_GT(forwards, 3);
+  EXPECT_GT(backwards, 3);
+  EXPECT_GT(straight, 100);
 }
 
 TEST(MeshOperations, SplitOfAPrimaryEdgeLandsOnTheCurve) {
