@@ -310,13 +310,12 @@ double star_curved(const TriMesh& m, const mesh::Constraints& c, int v) {
 // target; in the curved pipeline, curved_test too. Returns the number kept.
 long coarsening_collapses(TriMesh& m, const mesh::Constraints& c, const Options& o, StarClock& clock, long since) {
   const double target = o.edge_length;
-  const bool curved = o.curved_stop_amips > 0;
   const mesh::CollapseTest short_enough = [&](int from, int to) {
     return mesh::collapse_keeps_edges_short(m, from, to, [&](int, int) { return mesh::kCoarseningScale * target; });
   };
   const auto collapse = [&](int from, int to) {
     const auto operation = [&] { return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough); };
-    if (!curved) return operation();
+    if (!o.curved) return operation();
     return curved_test(
         m, o, clock, from, to, operation, [&] { return star_curved(m, c, to); },
         [&] { return std::max(star_curved(m, c, from), star_curved(m, c, to)); });
@@ -361,7 +360,7 @@ int coarsening_swaps(TriMesh& m, const mesh::Constraints& c, const Options& o, S
   const auto swap = [&](int a, int b, int t) {
     std::array<int, 2> slots{-1, -1};
     const auto operation = [&] { return mesh::swap_edge(m, a, b, 0, t, &slots); };
-    if (!(o.curved_stop_amips > 0)) return operation();
+    if (!o.curved) return operation();
     const auto worst_in_slots = [&] { return std::max(curved_energy(m, c, slots[0]), curved_energy(m, c, slots[1])); };
     return curved_test(m, o, clock, a, b, operation, worst_in_slots, worst_in_slots);
   };

@@ -31,10 +31,11 @@ struct Options {
   // Coarsening after the loop: collapses against the target length alone, at most this many rounds.
   bool coarsen = true;
   int coarsening_rounds = 8;
-  // When positive (the curved pipeline's stop energy), coarsening also refuses a collapse that
-  // leaves a triangle whose curved form, as the curve stage first makes it, is above this and
-  // above the worst it replaces.
-  double curved_stop_amips = 0;
+  // The curved pipeline: coarsening also refuses a collapse or swap that leaves a triangle whose
+  // curved form, as the curve stage first makes it (mesh::curved_element), is above
+  // curved_stop_amips and above the worst it replaces.
+  bool curved = false;
+  double curved_stop_amips = 20;
   std::ostream* log = nullptr;           // one line per iteration when set (--verbose)
   // Called after each iteration with its number (from 1), the triangles and the worst AMIPS energy.
   std::function<void(int iteration, int triangles, double max_amips)> on_iteration;
@@ -68,7 +69,7 @@ Quality measure(const mesh::TriMesh& mesh, bool mean_edge_length);
 // shorter than edge_length, shortest first, judged against the target length alone (no new edge
 // longer than 5/3 of it) rather than the sizing field the loop refined, each kept only under every
 // invariant and with no new triangle above max(stop_max_amips, the worst it replaces) (nor, with
-// curved_stop_amips, beside a curve above it once curved); then a swap pass, and smoothing where
+// `curved`, beside a curve above curved_stop_amips once curved); then a swap pass, and smoothing where
 // the collapses and swaps changed the mesh. Adds to stats.
 void coarsen(mesh::TriMesh& mesh, const mesh::Constraints& constraints, const Options& options, Stats& stats);
 

@@ -78,7 +78,8 @@ Resolved resolve(const Parameters& p, double diagonal) {
   r.optimize.max_iterations = p.max_iterations;
   r.optimize.stop_min_angle_deg = p.alpha_deg;  // the target min angle is α
   r.optimize.stop_max_amips = p.stop_amips;
-  r.optimize.curved_stop_amips = p.order == 1 ? 0.0 : p.curved_stop_amips;
+  r.optimize.curved = p.order != 1;
+  r.optimize.curved_stop_amips = p.curved_stop_amips;
   r.curve.order = p.order == 2 ? 2 : 3;
   // An order-2 edge only approximates its curve: within the secondary features' envelope ε unless
   // told otherwise, the distance every other feature of the mesh is kept within.

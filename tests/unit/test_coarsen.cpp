@@ -141,6 +141,7 @@ TEST(Coarsen, InTheCurvedPipelineTrianglesAlongCurvesKeepTheCurvedBound) {
     optimize::Options o;
     o.edge_length = 0.25;
     o.stop_max_amips = 10;
+    o.curved = true;
     o.curved_stop_amips = 20;
     optimize::Stats s;
     coarsen_and_check(f, o, s, "coarsening for the curved pipeline");
