@@ -36,8 +36,11 @@ std::array<Vec2, 2> nodes_on_chord(const Vec2& lo, const Vec2& hi, int order) {
 }
 
 geometry::P3Nodes curved_element(const TriMesh& m, const Constraints& c, int t) {
+  return curved_element(m, c, t, followed_edge(m, m.triangle(t)));
+}
+
+geometry::P3Nodes curved_element(const TriMesh& m, const Constraints& c, int t, int followed) {
   const Triangle& tri = m.triangle(t);
-  const int followed = followed_edge(m, tri);
   geometry::P3Nodes p;
   for (int i = 0; i < 3; ++i) {
     const int a = tri[i], b = tri[(i + 1) % 3], lo = std::min(a, b), hi = std::max(a, b);

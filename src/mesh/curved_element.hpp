@@ -32,5 +32,7 @@ std::array<Vec2, 2> nodes_on_chord(const Vec2& lo, const Vec2& hi, int order);
 // its curve, the others on their chords, the centre at the corners' centroid (the caller chooses
 // among geometry::p3_centre_candidates).
 geometry::P3Nodes curved_element(const TriMesh& m, const Constraints& c, int t);
+// The same with the followed edge known (followed_edge of the triangle).
+geometry::P3Nodes curved_element(const TriMesh& m, const Constraints& c, int t, int followed);
 
 }  // namespace curvemesh::mesh

@@ -222,8 +222,9 @@ namespace {
 // (mesh::curved_element), with the best of the stage's three centres. 0 for a triangle the curve
 // stage does not bend (mesh::followed_edge): the linear energy judges those.
 double curved_energy(const TriMesh& m, const mesh::Constraints& c, int t) {
-  if (mesh::followed_edge(m, m.triangle(t)) < 0) return 0;
-  geometry::P3Nodes p = mesh::curved_element(m, c, t);
+  const int followed = mesh::followed_edge(m, m.triangle(t));
+  if (followed < 0) return 0;
+  geometry::P3Nodes p = mesh::curved_element(m, c, t, followed);
   double best = std::numeric_limits<double>::infinity();
   for (const Vec2& centre : geometry::p3_centre_candidates(p)) {
     p[9] = centre;
