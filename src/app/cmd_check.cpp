@@ -49,14 +49,14 @@ int run_check(const CheckArgs& args) {
   report["exact_fallbacks"] = c.exact_fallbacks;
 
   if (!args.svg.empty()) {
-    svg::FeatureSoup soup;
+    pipeline::Result read;
     try {
-      soup = pipeline::run(pipeline::Source::file(args.svg), {}, pipeline::Stage::read).soup;
+      read = pipeline::run(pipeline::Source::file(args.svg), {}, pipeline::Stage::read);
     } catch (const Error& e) {
       std::cerr << "curvemesh: " << e.what() << "\n";
       return exit_code(e);
     }
-    const pipeline::FeatureDistance d = pipeline::feature_distance(m, soup);
+    const pipeline::FeatureDistance d = pipeline::feature_distance(m, read.soup);
     report["primary_lines"] = d.primary_lines;
     report["max_feature_distance"] = d.max;
     report["max_feature_distance_rel"] = d.max_rel;

@@ -3,13 +3,14 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <array>
 #include <memory>
 
 #include "app/commands.hpp"
 #include "app/mesh_options.hpp"
 #include "app/solve_common.hpp"
 #include "fem/diffuse.hpp"
-#include "svg/paint.hpp"
+#include "pipeline/output.hpp"
 
 namespace curvemesh::app {
 
@@ -23,8 +24,8 @@ struct DiffuseArgs {
 int run_diffuse(const DiffuseArgs& args) {
   const SolveOptions& o = args.solve;
   fem::DiffuseOptions options;
-  const svg::Paint bg = *svg::parse_color(args.background);  // checked by the option
-  options.background = {bg.r / 255.0, bg.g / 255.0, bg.b / 255.0};
+  const std::array<double, 3> bg = *pipeline::css_colour(args.background);  // checked by the option
+  options.background = {bg[0], bg[1], bg[2]};
 
   int exit_code = kOk;
   const std::optional<fem::MeshedDrawing> meshed = mesh_for_solving(o, "diffused", &exit_code);
@@ -91,7 +92,7 @@ Runner add_diffuse_command(CLI::App& app) {
                   "colour of the parts of the box that no curve borders (any CSS colour), where the colour is "
                   "otherwise undetermined")
       ->capture_default_str()
-      ->check([](const std::string& s) { return svg::parse_color(s) ? std::string() : "not a CSS colour: " + s; });
+      ->check([](const std::string& s) { return pipeline::css_colour(s) ? std::string() : "not a CSS colour: " + s; });
   add_feature_options(*cmd, o.parameters);
   add_memory_limit_option(*cmd, o.memory_limit_gb);
   o.vtu_option = "--vtu";

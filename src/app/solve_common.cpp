@@ -11,6 +11,7 @@
 #include "app/outputs.hpp"
 #include "app/progress.hpp"
 #include "base/text.hpp"
+#include "pipeline/domain.hpp"
 #include "pipeline/output.hpp"
 
 namespace curvemesh::app {
@@ -29,7 +30,7 @@ void add_solve_options(CLI::App& cmd, SolveOptions& o, const std::string& defaul
                  "also called evenodd), outside (the others), filled (what the drawing's filled elements cover, "
                  "as `mesh --domain filled`), or all (the whole meshed box; also called box)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"inside", "evenodd", "outside", "filled", "all", "box"}));
+      ->check(CLI::IsMember(pipeline::domain_names()));
   add_feature_options(cmd, o.parameters);
   add_memory_limit_option(cmd, o.memory_limit_gb);
 }
@@ -86,22 +87,16 @@ std::optional<Problem> prepare_problem(const SolveOptions& o, int* exit_code) {
   const io::HighOrderMesh& whole = p.drawing.mesh;
   p.view = geometry::Box2();
   for (const geometry::Vec2& x : whole.nodes) p.view.add(x);
-  // The same classification as `curvemesh mesh --domain` (regions/faces.hpp).
-  const regions::Classification& classified = p.drawing.classification;
-  // inside and all are the older names of evenodd and box; outside is evenodd's complement.
-  const std::string name = o.domain == "all" ? "box" : o.domain == "inside" || o.domain == "outside" ? "evenodd" : o.domain;
-  std::vector<char> keep = regions::domain_triangles(classified, *regions::domain_named(name));
-  if (o.domain == "outside")
-    for (char& k : keep) k = !k;
-  const int kept = static_cast<int>(std::count(keep.begin(), keep.end(), 1));
-  if (kept == 0) {
+  std::optional<pipeline::DomainMesh> domain = pipeline::cut_domain(p.drawing, o.domain);
+  if (!domain) {
     say(o.input + ": the domain '" + o.domain + "' is empty (" +
         (o.domain == "filled" ? "nothing of the drawing is filled" : "no region of the drawing is enclosed by its curves") +
         "); try --domain all");
     *exit_code = kInvalidInput;
     return std::nullopt;
   }
-  p.mesh = regions::submesh(whole, keep, &p.line_origin);
+  p.mesh = std::move(domain->mesh);
+  p.line_origin = std::move(domain->line_origin);
   if (o.linear) p.mesh = fem::straight_mesh(p.mesh);
   std::cerr << "curvemesh: meshed " << base::printable(o.input) << " in " << p.drawing.seconds << " s: " << p.mesh.triangle_count()
             << " triangles in the domain (" << (o.linear ? "straight" : "cubic") << " map)\n";
@@ -114,8 +109,7 @@ int write_outputs(const SolveOptions& o, const io::HighOrderMesh& mesh, const st
     if (!o.output_vtu.empty()) {
       // Only the nodes some triangle uses (a straight map leaves the cubic nodes unused).
       std::vector<int> node_origin;
-      const io::HighOrderMesh used =
-          regions::submesh(mesh, std::vector<char>(mesh.triangle_count(), 1), nullptr, &node_origin);
+      const io::HighOrderMesh used = pipeline::used_nodes(mesh, node_origin);
       std::vector<io::VtuPointArray> kept = arrays;
       for (io::VtuPointArray& a : kept) {
         std::vector<double> values;

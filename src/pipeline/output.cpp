@@ -14,6 +14,7 @@
 #include "io/xdmf_writer.hpp"
 #include "regions/faces.hpp"
 #include "regions/groups.hpp"
+#include "svg/paint.hpp"
 
 namespace curvemesh::pipeline {
 
@@ -186,6 +187,12 @@ std::string stats_text(const Result& r) {
   // Names from the drawing (the input's path, regions' ids) are valid UTF-8 when the reader made
   // them; a path from the command line need not be: replaced rather than refused.
   return r.stats.dump(1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
+}
+
+std::optional<std::array<double, 3>> css_colour(const std::string& css) {
+  const std::optional<svg::Paint> paint = svg::parse_color(css);
+  if (!paint) return std::nullopt;
+  return std::array<double, 3>{paint->r / 255.0, paint->g / 255.0, paint->b / 255.0};
 }
 
 std::vector<SideColours> curve_colours(const svg::FeatureSoup& soup) {

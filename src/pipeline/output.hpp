@@ -1,7 +1,9 @@
 #pragma once
 // What a pipeline result becomes: the mesh as files (.msh, .vtu, .svg), as a plain high-order
 // mesh, and as the finished drawing the applications solve on.
+#include <array>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,6 +58,10 @@ std::string stats_text(const Result& result);
 // Each soup curve's colour on its two sides: its data-color-left / data-color-right where given,
 // else its stroke colour, else its fill colour, else black.
 std::vector<SideColours> curve_colours(const svg::FeatureSoup& soup);
+
+// A CSS colour as the drawings' colours are read (svg::parse_color), each channel in [0, 1];
+// nothing when `css` is not a colour.
+std::optional<std::array<double, 3>> css_colour(const std::string& css);
 
 // The curved result as the applications take it. Throws std::logic_error when it was not curved.
 MeshedDrawing meshed_drawing(const Result& result);

@@ -16,14 +16,21 @@ import tempfile
 ORDER = ["base", "geometry", "mesh", "svg", "features", "triangulate", "optimize", "curve", "io", "regions",
          "pipeline", "fem", "api", "app", "python"]
 RANK = {layer: i for i, layer in enumerate(ORDER)}
-# Below its own rank, a layer may still not reach these (it must go through the pipeline).
+# Below its own rank, a layer may still not reach these (it must go through the pipeline). The
+# command line calls the pipeline and never a stage, nor cuts a mesh (regions) or touches one (mesh):
+# it reads and writes files through io.
 FORBIDDEN = {
     "fem": {"svg", "features", "triangulate", "optimize", "curve"},
+    "app": {"mesh", "svg", "features", "triangulate", "optimize", "curve", "regions"},
     "api": {"svg", "features", "triangulate", "optimize", "curve", "regions", "fem"},
     "python": {"base", "geometry", "mesh", "svg", "features", "triangulate", "optimize", "curve", "io", "regions",
                "pipeline", "fem"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"', re.M)
+# A layer's namespace named in code (comments and strings left out), e.g. `regions::submesh`: what a
+# forbidden layer's header reached through an allowed one would still let a file call.
+QUALIFIED = re.compile(r'\b([a-z]+)::')
+COMMENT_OR_STRING = re.compile(r'//[^\n]*|"(?:\\.|[^"\\\n])*"')
 
 
 def layer_of(path, root):
@@ -53,6 +60,9 @@ def violations(roots):
                         found.append(f"{path}: {own} includes \"{included}\", a layer above it")
                     elif target in FORBIDDEN.get(own, ()):
                         found.append(f"{path}: {own} includes \"{included}\"; it must go through the pipeline")
+                code = COMMENT_OR_STRING.sub("", text)
+                for named in sorted(set(QUALIFIED.findall(code)) & FORBIDDEN.get(own, set())):
+                    found.append(f"{path}: {own} calls {named}::; it must go through the pipeline")
     return found
 
 
@@ -60,6 +70,7 @@ def self_test():
     with tempfile.TemporaryDirectory() as tmp:
         os.makedirs(os.path.join(tmp, "curve"))
         os.makedirs(os.path.join(tmp, "fem"))
+        os.makedirs(os.path.join(tmp, "app"))
         with open(os.path.join(tmp, "curve", "ok.cpp"), "w") as f:
             f.write('#include "mesh/tri_mesh.hpp"\n#include "curve/curve.hpp"\n')
         if violations([tmp]):
@@ -69,11 +80,15 @@ def self_test():
             f.write('#include "pipeline/pipeline.hpp"\n')
         with open(os.path.join(tmp, "fem", "stage.cpp"), "w") as f:
             f.write('#include "triangulate/triangulate.hpp"\n')
+        with open(os.path.join(tmp, "app", "cut.cpp"), "w") as f:
+            f.write('#include "pipeline/pipeline.hpp"\n#include "regions/faces.hpp"\n')
+        with open(os.path.join(tmp, "app", "reach.cpp"), "w") as f:
+            f.write('#include "pipeline/pipeline.hpp"\n// regions::x in a comment\nint f() { return regions::count(); }\n')
         found = violations([tmp])
-        if len(found) != 2:
-            print("self-test: expected 2 violations, found", found)
+        if len(found) != 4:
+            print("self-test: expected 4 violations, found", found)
             return 1
-    print("self-test: ok (an upward include and a stage included by fem are both refused)")
+    print("self-test: ok (an upward include, a stage included by fem, a cut in the command line, included or reached: all refused)")
     return 0
 
 
