@@ -302,28 +302,18 @@ void curve_stage(Result& r, const std::string& name, const RunOptions& options,
          " farther than --curve-tolerance from their curve (too short to split, or no split of it is valid)");
 }
 
-Result run_stages(const Source& source, const Parameters& parameters, const RunOptions& options) {
-  parameters.validate();
-  Result r;
-  r.name = source.name;
-  r.parameters = parameters;
-  // The earlier of what the caller needs and what the parameters ask for; a linear mesh ends at
-  // `optimize`.
-  const Stage asked = std::min(options.stop_after, stage_of(parameters.stop_after));
-  const Stage last = parameters.order == 1 && asked == Stage::curve ? Stage::optimize : asked;
-  Json& stats = r.stats;
-  const auto warn = [&](const std::string& w) {
-    r.warnings.push_back(w);
-    if (options.warn) options.warn(w);
-  };
-  const auto report = [&](Stage stage, int pass = 0, int triangles = 0, double max_amips = 0) {
-    if (options.progress) options.progress({stage, pass, triangles, max_amips});
-  };
-  stats["input"] = source.name;
-  auto t = Clock::now();
-  report(Stage::read);
+using Warn = std::function<void(const std::string&)>;
 
-  // Read, and (unless stopping there) find the features.
+void report(const RunOptions& options, Stage stage, int pass = 0, int triangles = 0, double max_amips = 0) {
+  if (options.progress) options.progress({stage, pass, triangles, max_amips});
+}
+
+// §3: the drawing read (a .poly file gives its features directly) and the lengths resolved
+// against its bounding-box diagonal; then, unless `last` is the read, the features found.
+void read_stage(Result& r, const Source& source, const Parameters& parameters, const RunOptions& options, Stage last,
+                const Warn& warn) {
+  Json& stats = r.stats;
+  auto t = Clock::now();
   try {
     if (source.kind == Source::Kind::file && ends_with(source.path, ".poly")) {
       r.features = features::read_poly(source.path, parameters.limits);
@@ -332,93 +322,121 @@ Result run_stages(const Source& source, const Parameters& parameters, const RunO
       stats["seconds"]["read"] = seconds_since(t);
       stats["seconds"]["features"] = 0.0;
       r.last = Stage::features;
-    } else {
-      svg::ReadOptions read;
-      read.degenerate_tolerance_rel = parameters.eps_m_rel;
-      read.close_filled_subpaths = reads_paint(parameters);
-      read.max_curves = parameters.limits.max_curves;
-      read.max_elements = parameters.limits.max_elements;
-      read.max_input_bytes = static_cast<std::uint64_t>(parameters.limits.max_input_mb * 1048576.0);
-      if (source.kind == Source::Kind::file)
-        r.soup = svg::read_svg_file(source.path, read);
-      else if (source.kind == Source::Kind::svg_text)
-        r.soup = svg::read_svg(source.text, read, source.name);
-      else
-        r.soup = finite_soup(source.soup, source.name);
-      for (const std::string& w : r.soup.warnings) warn(w);
-      stats["seconds"]["read"] = seconds_since(t);
-      r.resolved = resolve(parameters, finite_diagonal(features::drawing_box(r.soup), source.name));
-      if (last == Stage::read) return r;
-      report(Stage::features);
-      t = Clock::now();
-      r.features = features::process(r.soup, r.resolved.features);
-      stats["seconds"]["features"] = seconds_since(t);
-      r.last = Stage::features;
+      return;
     }
+    svg::ReadOptions read;
+    read.degenerate_tolerance_rel = parameters.eps_m_rel;
+    read.close_filled_subpaths = reads_paint(parameters);
+    read.max_curves = parameters.limits.max_curves;
+    read.max_elements = parameters.limits.max_elements;
+    read.max_input_bytes = static_cast<std::uint64_t>(parameters.limits.max_input_mb * 1048576.0);
+    if (source.kind == Source::Kind::file)
+      r.soup = svg::read_svg_file(source.path, read);
+    else if (source.kind == Source::Kind::svg_text)
+      r.soup = svg::read_svg(source.text, read, source.name);
+    else
+      r.soup = finite_soup(source.soup, source.name);
+    for (const std::string& w : r.soup.warnings) warn(w);
+    stats["seconds"]["read"] = seconds_since(t);
+    r.resolved = resolve(parameters, finite_diagonal(features::drawing_box(r.soup), source.name));
+    if (last == Stage::read) return;
+    report(options, Stage::features);
+    t = Clock::now();
+    r.features = features::process(r.soup, r.resolved.features);
+    stats["seconds"]["features"] = seconds_since(t);
+    r.last = Stage::features;
   } catch (const svg::InputError& e) {
     throw invalid(e.what());
   }
+}
+
+void features_json(Result& r) {
   const features::Features& f = r.features;
   int primary = 0;
   for (const auto& s : f.sections) primary += s.kind == features::Kind::primary;
-  stats["features"] = {
+  r.stats["features"] = {
       {"primary_sections", primary}, {"secondary_segments", f.segments.size()}, {"points", f.points.size()}};
-  if (last == Stage::features) return r;
+}
 
-  if (f.box.empty()) throw invalid(source.name + ": nothing to mesh (no curves, segments or points)");
-  if (f.sections.empty() && f.segments.empty() && f.points.empty())
-    warn("nothing is drawn; meshing the canvas alone");
-
-  report(Stage::triangulate);
-  t = Clock::now();
+// §4.1, first half: the exact constrained triangulation of the features in their box.
+void triangulate_stage(Result& r, const std::string& name, const Warn& warn) {
+  const features::Features& f = r.features;
+  if (f.box.empty()) throw invalid(name + ": nothing to mesh (no curves, segments or points)");
+  if (f.sections.empty() && f.segments.empty() && f.points.empty()) warn("nothing is drawn; meshing the canvas alone");
+  const auto t = Clock::now();
   triangulate::Result tri = triangulate::triangulate(f, r.resolved.triangulate);
-  stats["seconds"]["triangulate"] = seconds_since(t);
-  stats["triangulate"] = {{"vertices", tri.stats.vertices},
-                          {"triangles", tri.stats.triangles},
-                          {"exact_vertices", tri.stats.exact_vertices},
-                          {"method", triangulate::method_name(tri.stats.method)}};
+  r.stats["seconds"]["triangulate"] = seconds_since(t);
+  r.stats["triangulate"] = {{"vertices", tri.stats.vertices},
+                            {"triangles", tri.stats.triangles},
+                            {"exact_vertices", tri.stats.exact_vertices},
+                            {"method", triangulate::method_name(tri.stats.method)}};
   r.box = tri.box;
   r.triangulate_stats = tri.stats;
   r.shared = std::move(tri.shared);
   r.linear = std::move(tri.mesh);
   r.constraints = triangulate::invariant_inputs(f, r.box);
   r.last = Stage::triangulate;
+}
 
-  if (last != Stage::triangulate) {
-    t = Clock::now();
-    report(Stage::optimize, 0, tri.stats.triangles);
-    optimize::Options o = r.resolved.optimize;
-    o.log = options.log;
-    if (options.progress)
-      o.on_iteration = [&](int iteration, int triangles, double max_amips) {
-        report(Stage::optimize, iteration, triangles, max_amips);
-      };
-    r.optimize_stats = optimize::optimize(r.linear, r.constraints, o);
-    stats["seconds"]["optimize"] = seconds_since(t);
-    stats["optimize"] = optimize_json(r.optimize_stats);
-    r.last = Stage::optimize;
-  }
+// §4.1, second half: the linear mesh optimized.
+void optimize_stage(Result& r, const RunOptions& options) {
+  const auto t = Clock::now();
+  report(options, Stage::optimize, 0, r.triangulate_stats.triangles);
+  optimize::Options o = r.resolved.optimize;
+  o.log = options.log;
+  if (options.progress)
+    o.on_iteration = [&](int iteration, int triangles, double max_amips) {
+      report(options, Stage::optimize, iteration, triangles, max_amips);
+    };
+  r.optimize_stats = optimize::optimize(r.linear, r.constraints, o);
+  r.stats["seconds"]["optimize"] = seconds_since(t);
+  r.stats["optimize"] = optimize_json(r.optimize_stats);
+  r.last = Stage::optimize;
+}
+
+// The linear mesh measured and checked before it is given out or curved.
+void check_linear(Result& r, const std::string& name) {
   r.quality = optimize::measure(r.linear);
+  Json& stats = r.stats;
   stats["mesh"] = quality_json(r.quality);
   stats["mesh"]["target_edge_length"] = r.resolved.features.edge;
   // How far the mesh's edges are from the curves they stand for, whatever its order: here the
-  // chords'; the curved mesh's below.
+  // chords'; the curved mesh's in curve_stage.
   edge_distance_json(stats["mesh"], curve::max_edge_distance(r.linear, r.constraints), r.resolved.d);
-
   if (const auto error = r.linear.structure_error())
     // Every operation checks its result exactly, so this is a bug; refuse rather than give it out.
-    throw internal("internal error: " + source.name + ": the mesh is broken (" + *error + ")");
+    throw internal("internal error: " + name + ": the mesh is broken (" + *error + ")");
   if (r.linear.exact_vertex_count() > 0)
     // Rounded coordinates could invert a triangle: refuse instead.
-    throw internal(source.name + ": " + std::to_string(r.linear.exact_vertex_count()) +
+    throw internal(name + ": " + std::to_string(r.linear.exact_vertex_count()) +
                    " vertices still have exact coordinates that do not round to doubles without inverting a "
                    "triangle");
-  if (last != Stage::curve) {
-    paint(r, warn);
-    return r;
-  }
+}
 
-  curve_stage(r, source.name, options, warn);
+// The stages in their order, up to the earlier of what the caller needs and what the parameters
+// ask for (a linear mesh ends at `optimize`); then the paint over the finished mesh.
+Result run_stages(const Source& source, const Parameters& parameters, const RunOptions& options) {
+  parameters.validate();
+  Result r;
+  r.name = source.name;
+  r.parameters = parameters;
+  const Stage asked = std::min(options.stop_after, stage_of(parameters.stop_after));
+  const Stage last = parameters.order == 1 && asked == Stage::curve ? Stage::optimize : asked;
+  const Warn warn = [&](const std::string& w) {
+    r.warnings.push_back(w);
+    if (options.warn) options.warn(w);
+  };
+  r.stats["input"] = source.name;
+  report(options, Stage::read);
+  read_stage(r, source, parameters, options, last, warn);
+  if (last == Stage::read) return r;
+  features_json(r);
+  if (last == Stage::features) return r;
+  report(options, Stage::triangulate);
+  triangulate_stage(r, source.name, warn);
+  if (last != Stage::triangulate) optimize_stage(r, options);
+  check_linear(r, source.name);
+  if (last == Stage::curve) curve_stage(r, source.name, options, warn);
   paint(r, warn);
   return r;
 }
