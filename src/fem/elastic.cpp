@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
+#include <utility>
 #include <stdexcept>
 
 #include "fem/output.hpp"
@@ -190,25 +192,106 @@ SparseMatrix NeoHookean::tangent(const Eigen::VectorXd& u) const {
   return assemble_tangent(u, index, size());
 }
 
+namespace {
+
+using Cholesky = Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower>;
+
+// The free unknowns (not clamped) and the map between them and all unknowns.
+struct FreeUnknowns {
+  std::vector<int> index;  // per unknown: its place among the free ones, −1 when clamped
+  std::vector<int> free;   // per free unknown: the unknown
+  Eigen::VectorXd restrict(const Eigen::VectorXd& full) const {
+    Eigen::VectorXd out(free.size());
+    for (std::size_t i = 0; i < free.size(); ++i) out[i] = full[free[i]];
+    return out;
+  }
+  Eigen::VectorXd expand(const Eigen::VectorXd& part, int n) const {
+    Eigen::VectorXd out = Eigen::VectorXd::Zero(n);
+    for (std::size_t i = 0; i < free.size(); ++i) out[free[i]] = part[i];
+    return out;
+  }
+};
+
+// The Newton step: the exact tangent's first; where it is not positive definite (the
+// factorisation fails) or its step is no descent direction (round-off in a nearly singular one),
+// K + τ diag(K) with τ growing tenfold, from a tenth of the last shift that worked (the tangent
+// changes little between steps). Sets it.shift; returns the step and its slope ∇Π·d (not negative
+// when no shift up to 1e8 gave a descent direction).
+std::pair<Eigen::VectorXd, double> descent_step(Cholesky& cholesky, const SparseMatrix& tangent,
+                                                const Eigen::VectorXd& r, double last_shift, NewtonIteration& it) {
+  const Eigen::Index m = tangent.rows();
+  Eigen::VectorXd step;
+  double slope = 0;
+  SparseMatrix diagonal;
+  for (;;) {
+    if (it.shift == 0) {
+      cholesky.factorize(tangent);
+    } else {
+      if (diagonal.size() == 0) {
+        diagonal.resize(m, m);
+        diagonal.reserve(Eigen::VectorXi::Constant(m, 1));
+        for (Eigen::Index i = 0; i < m; ++i) diagonal.insert(i, i) = std::max(std::abs(tangent.coeff(i, i)), 1e-300);
+      }
+      cholesky.factorize(tangent + it.shift * diagonal);
+    }
+    if (cholesky.info() == Eigen::Success) {
+      step = cholesky.solve(-r);
+      slope = r.dot(step);
+      if (slope < 0) break;
+    }
+    it.shift = it.shift == 0 ? std::max(1e-8, 0.1 * last_shift) : 10 * it.shift;
+    if (it.shift > 1e8) break;
+  }
+  return {step, slope};
+}
+
+// A point along the step accepted by the line search.
+struct Accepted {
+  Eigen::VectorXd u, residual;
+  double energy = 0, alpha = 0;
+};
+
+// Backtracking on Π from u (energy e, residual norm `residual_norm`) along `step` (slope ∇Π·d);
+// det F <= 0 gives Π = +∞ and is never accepted. Near the solution the full step lowers Π by less
+// than Π's round-off (`flat`): there a step that lowers the residual without raising Π beyond its
+// round-off is taken. Sets it.backtracks.
+std::optional<Accepted> line_search(const NeoHookean& p, const FreeUnknowns& unknowns, const Eigen::VectorXd& u,
+                                    const Eigen::VectorXd& step, double e, double slope, double load,
+                                    NewtonIteration& it) {
+  const ElasticOptions& o = p.options();
+  const bool flat = -slope <= 1e-11 * std::abs(e);
+  double alpha = 1;
+  for (it.backtracks = 0; it.backtracks <= o.max_backtracks; ++it.backtracks, alpha *= 0.5) {
+    Eigen::VectorXd trial = u + alpha * step;
+    const double trial_e = p.energy(trial, load);
+    if (!std::isfinite(trial_e)) continue;
+    const bool armijo = trial_e <= e + o.armijo * alpha * slope;
+    if (!armijo && !(flat && trial_e - e <= 1e-12 * (std::abs(e) + std::abs(trial_e)))) continue;
+    Eigen::VectorXd trial_r = unknowns.restrict(p.residual(trial, load));
+    if (armijo || trial_r.norm() < it.residual) return Accepted{std::move(trial), std::move(trial_r), trial_e, alpha};
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+// Newton's method with a line search on Π, the load applied in equal steps; the tangent factored
+// by CHOLMOD's LLᵀ, which fails on a matrix that is not positive definite (its automatic choice may
+// be an LDLᵀ, which factors indefinite matrices without a word); simplicial, which is faster than
+// supernodal here at every size measured (2 000 to 45 000 unknowns).
 ElasticResult NeoHookean::solve() const {
   const auto start = Clock::now();
   ElasticResult result;
   const int n = size();
   result.unknowns = n;
-  std::vector<int> index(n, -1), free;
+  FreeUnknowns unknowns{std::vector<int>(n, -1), {}};
   for (int i = 0; i < n; ++i)
-    if (!fixed(i)) index[i] = static_cast<int>(free.size()), free.push_back(i);
-  const int m = static_cast<int>(free.size());
+    if (!fixed(i)) unknowns.index[i] = static_cast<int>(unknowns.free.size()), unknowns.free.push_back(i);
+  const int m = static_cast<int>(unknowns.free.size());
   result.free_unknowns = m;
-  auto restrict = [&](const Eigen::VectorXd& full) {
-    Eigen::VectorXd out(m);
-    for (int i = 0; i < m; ++i) out[i] = full[free[i]];
-    return out;
-  };
   Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
   result.displacement = u;
-  // R(0) = −f: the scale the tolerance is relative to.
-  const double r0 = restrict(load_).norm();
+  const double r0 = unknowns.restrict(load_).norm();  // R(0) = −f: the scale the tolerance is relative to
   result.initial_residual = r0;
   const double target = options_.tolerance * r0;
   if (m == 0 || r0 == 0) {
@@ -217,15 +300,11 @@ ElasticResult NeoHookean::solve() const {
     result.seconds = seconds_since(start);
     return result;
   }
-  // LLᵀ, which fails on a matrix that is not positive definite (CHOLMOD's automatic choice may
-  // be an LDLᵀ, which factors indefinite matrices without a word); simplicial, which is faster
-  // than supernodal here at every size measured (2 000 to 45 000 unknowns).
-  Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> cholesky;
+  Cholesky cholesky;
   cholesky.setMode(Eigen::CholmodSimplicialLLt);
   cholesky.cholmod().print = 0;  // a failed factorisation is expected (an indefinite tangent), not news
   bool analysed = false;
-  // Ends the solve where it stands, saying why.
-  const auto stop = [&](const NewtonIteration& it, std::string why, double e) {
+  const auto stop = [&](const NewtonIteration& it, std::string why, double e) {  // where it stands, saying why
     result.iterations.push_back(it);
     result.failure = std::move(why);
     result.displacement = u;
@@ -239,7 +318,7 @@ ElasticResult NeoHookean::solve() const {
     const double load = double(s) / steps;
     auto t = Clock::now();
     double e = energy(u, load);
-    Eigen::VectorXd r = restrict(residual(u, load));
+    Eigen::VectorXd r = unknowns.restrict(residual(u, load));
     result.assembly_seconds += seconds_since(t);
     for (int k = 0;; ++k) {
       NewtonIteration it{s, k, r.norm(), e, 0.0, 0, 0.0};
@@ -247,78 +326,27 @@ ElasticResult NeoHookean::solve() const {
         result.iterations.push_back(it);
         break;
       }
-      if (!std::isfinite(it.residual) || k == options_.max_iterations) {
+      if (!std::isfinite(it.residual) || k == options_.max_iterations)
         return stop(it, std::isfinite(it.residual) ? "no convergence in " + std::to_string(k) + " Newton iterations"
                                                     : "the residual is not finite", e);
-      }
       t = Clock::now();
-      const SparseMatrix tangent = assemble_tangent(u, index, m);
+      const SparseMatrix tangent = assemble_tangent(u, unknowns.index, m);
       result.assembly_seconds += seconds_since(t);
       t = Clock::now();
       if (!analysed) cholesky.analyzePattern(tangent), analysed = true;
-      // The exact tangent first; where it is not positive definite (the factorisation fails) or
-      // its step is no descent direction (round-off in a nearly singular one), K + τ diag(K)
-      // with τ growing tenfold.
-      Eigen::VectorXd step;
-      double slope = 0;  // ∇Π·d
-      SparseMatrix diagonal;
-      for (;;) {
-        if (it.shift == 0) {
-          cholesky.factorize(tangent);
-        } else {
-          if (diagonal.size() == 0) {
-            diagonal.resize(m, m);
-            diagonal.reserve(Eigen::VectorXi::Constant(m, 1));
-            for (int i = 0; i < m; ++i) diagonal.insert(i, i) = std::max(std::abs(tangent.coeff(i, i)), 1e-300);
-          }
-          cholesky.factorize(tangent + it.shift * diagonal);
-        }
-        if (cholesky.info() == Eigen::Success) {
-          step = cholesky.solve(-r);
-          slope = r.dot(step);
-          if (slope < 0) break;
-        }
-        // From a tenth of the last shift that worked: the tangent changes little between steps.
-        it.shift = it.shift == 0 ? std::max(1e-8, 0.1 * last_shift) : 10 * it.shift;
-        if (it.shift > 1e8) break;
-      }
+      const auto [step, slope] = descent_step(cholesky, tangent, r, last_shift, it);
       result.factor_seconds += seconds_since(t);
       if (it.shift > 0) last_shift = it.shift;
-      if (!(slope < 0)) {
-        return stop(it, "the tangent could not be made positive definite", e);
-      }
-      Eigen::VectorXd full_step = Eigen::VectorXd::Zero(n);
-      for (int i = 0; i < m; ++i) full_step[free[i]] = step[i];
-      // Backtracking on Π; det F <= 0 gives Π = +∞ and is never accepted. Near the solution the
-      // full step lowers Π by less than Π's round-off (`flat`): there a step that lowers the
-      // residual without raising Π beyond its round-off is taken.
-      const bool flat = -slope <= 1e-11 * std::abs(e);
+      if (!(slope < 0)) return stop(it, "the tangent could not be made positive definite", e);
       t = Clock::now();
-      double alpha = 1;
-      bool accepted = false;
-      Eigen::VectorXd trial, trial_r;
-      double trial_e = 0;
-      for (it.backtracks = 0; it.backtracks <= options_.max_backtracks; ++it.backtracks, alpha *= 0.5) {
-        trial = u + alpha * full_step;
-        trial_e = energy(trial, load);
-        if (!std::isfinite(trial_e)) continue;
-        const bool armijo = trial_e <= e + options_.armijo * alpha * slope;
-        if (!armijo && !(flat && trial_e - e <= 1e-12 * (std::abs(e) + std::abs(trial_e)))) continue;
-        trial_r = restrict(residual(trial, load));
-        if (armijo || trial_r.norm() < it.residual) {
-          accepted = true;
-          break;
-        }
-      }
+      std::optional<Accepted> next = line_search(*this, unknowns, u, unknowns.expand(step, n), e, slope, load, it);
       result.assembly_seconds += seconds_since(t);
-      if (!accepted) {
-        return stop(it, "the line search found no step that lowers the energy", e);
-      }
-      it.step_length = alpha;
+      if (!next) return stop(it, "the line search found no step that lowers the energy", e);
+      it.step_length = next->alpha;
       result.iterations.push_back(it);
-      u = trial;
-      e = trial_e;
-      r = trial_r;
+      u = std::move(next->u);
+      e = next->energy;
+      r = std::move(next->residual);
     }
   }
   result.converged = true;
