@@ -53,6 +53,72 @@ fem::Image draw(const fem::Geometry& geometry, const fem::Space& space, const Ei
   return image;
 }
 
+// What the solve found, beside the result itself, for the reports.
+struct ElasticSummary {
+  double largest = 0, l2 = 0;  // the largest displacement at a node, its L2 norm
+  bool probe_found = false;
+  fem::Vec2 probe_value{0, 0};
+  int hung = 0;  // nodes clamped at the top
+};
+
+void print_elastic_json(const ElasticArgs& args, const Problem& problem, const fem::ElasticResult& r,
+                        const ElasticSummary& summary) {
+  const double d = problem.drawing.diagonal;
+  const double largest = summary.largest, l2 = summary.l2;
+  const bool probe_found = summary.probe_found;
+  const fem::Vec2& probe_value = summary.probe_value;
+  nlohmann::ordered_json j;
+  j["converged"] = r.converged;
+  if (!r.converged) j["failure"] = r.failure;
+  j["map"] = args.solve.linear ? "straight" : "cubic";
+  j["triangles"] = problem.mesh.triangle_count();
+  j["unknowns"] = r.unknowns;
+  j["free_unknowns"] = r.free_unknowns;
+  j["diagonal"] = d;
+  j["mesh_seconds"] = problem.drawing.seconds;
+  j["seconds"] = r.seconds;
+  j["assembly_seconds"] = r.assembly_seconds;
+  j["factor_seconds"] = r.factor_seconds;
+  j["energy"] = r.energy;
+  j["l2_norm"] = l2;
+  j["max_displacement"] = largest;
+  if (probe_found) j["probe"] = {probe_value.x(), probe_value.y()};
+  j["newton"] = nlohmann::json::array();
+  for (const auto& it : r.iterations)
+    j["newton"].push_back({{"load_step", it.load_step},
+                           {"iteration", it.iteration},
+                           {"residual", it.residual},
+                           {"energy", it.energy},
+                           {"step_length", it.step_length},
+                           {"backtracks", it.backtracks},
+                           {"shift", it.shift}});
+  std::cout << j.dump(1) << "\n";
+}
+
+void print_elastic_text(const ElasticArgs& args, const fem::ElasticOptions& options, const fem::ElasticResult& r,
+                        const ElasticSummary& summary, double d) {
+  const double largest = summary.largest, l2 = summary.l2;
+  const bool probe_found = summary.probe_found;
+  const fem::Vec2& probe_value = summary.probe_value;
+  const int hung = summary.hung;
+  std::printf("elastic: %d unknowns (P2 displacement, x and y), %d clamped at the top; mu = %.6g, lambda = %.6g, "
+              "gravity %.6g per unit area along +y (down)\n",
+              r.unknowns, 2 * hung, options.material.mu, options.material.lambda, args.density * args.gravity);
+  std::printf("%4s %4s %12s %15s %8s %4s %8s\n", "step", "iter", "residual", "energy", "alpha", "bt", "shift");
+  for (const auto& it : r.iterations)
+    std::printf("%4d %4d %12.4e %15.8e %8.4g %4d %8.2g\n", it.load_step, it.iteration,
+                r.initial_residual > 0 ? it.residual / r.initial_residual : it.residual, it.energy, it.step_length,
+                it.backtracks, it.shift);
+  const int newton = static_cast<int>(r.iterations.size()) - std::max(1, args.load_steps);
+  std::printf("%s after %d Newton iterations in %.4f s (assembly %.4f s, CHOLMOD %.4f s); residual relative to "
+              "the load\n",
+              r.converged ? "converged" : "NOT converged", std::max(newton, 0), r.seconds, r.assembly_seconds,
+              r.factor_seconds);
+  std::printf("energy %.10g, |u| max %.6g (%.4g d), ||u||_L2 %.6g\n", r.energy, largest, largest / d, l2);
+  if (probe_found) std::printf("u at (%g, %g): (%.10g, %.10g)\n", args.probe[0], args.probe[1], probe_value.x(),
+                               probe_value.y());
+}
+
 int run_elastic(const ElasticArgs& args) {
   if (!args.probe.empty() && args.probe.size() != 2) {
     std::cerr << "curvemesh: --probe takes two numbers, x and y\n";
@@ -93,51 +159,9 @@ int run_elastic(const ElasticArgs& args) {
     probe_found =
         fem::displacement_at(geometry, space, r.displacement, fem::Vec2(args.probe[0], args.probe[1]), probe_value);
 
-  if (args.json) {
-    nlohmann::ordered_json j;
-    j["converged"] = r.converged;
-    if (!r.converged) j["failure"] = r.failure;
-    j["map"] = args.solve.linear ? "straight" : "cubic";
-    j["triangles"] = p->mesh.triangle_count();
-    j["unknowns"] = r.unknowns;
-    j["free_unknowns"] = r.free_unknowns;
-    j["diagonal"] = d;
-    j["mesh_seconds"] = p->drawing.seconds;
-    j["seconds"] = r.seconds;
-    j["assembly_seconds"] = r.assembly_seconds;
-    j["factor_seconds"] = r.factor_seconds;
-    j["energy"] = r.energy;
-    j["l2_norm"] = l2;
-    j["max_displacement"] = largest;
-    if (probe_found) j["probe"] = {probe_value.x(), probe_value.y()};
-    j["newton"] = nlohmann::json::array();
-    for (const auto& it : r.iterations)
-      j["newton"].push_back({{"load_step", it.load_step},
-                             {"iteration", it.iteration},
-                             {"residual", it.residual},
-                             {"energy", it.energy},
-                             {"step_length", it.step_length},
-                             {"backtracks", it.backtracks},
-                             {"shift", it.shift}});
-    std::cout << j.dump(1) << "\n";
-  } else {
-    std::printf("elastic: %d unknowns (P2 displacement, x and y), %d clamped at the top; mu = %.6g, lambda = %.6g, "
-                "gravity %.6g per unit area along +y (down)\n",
-                r.unknowns, 2 * hung, options.material.mu, options.material.lambda, args.density * args.gravity);
-    std::printf("%4s %4s %12s %15s %8s %4s %8s\n", "step", "iter", "residual", "energy", "alpha", "bt", "shift");
-    for (const auto& it : r.iterations)
-      std::printf("%4d %4d %12.4e %15.8e %8.4g %4d %8.2g\n", it.load_step, it.iteration,
-                  r.initial_residual > 0 ? it.residual / r.initial_residual : it.residual, it.energy, it.step_length,
-                  it.backtracks, it.shift);
-    const int newton = static_cast<int>(r.iterations.size()) - std::max(1, args.load_steps);
-    std::printf("%s after %d Newton iterations in %.4f s (assembly %.4f s, CHOLMOD %.4f s); residual relative to "
-                "the load\n",
-                r.converged ? "converged" : "NOT converged", std::max(newton, 0), r.seconds, r.assembly_seconds,
-                r.factor_seconds);
-    std::printf("energy %.10g, |u| max %.6g (%.4g d), ||u||_L2 %.6g\n", r.energy, largest, largest / d, l2);
-    if (probe_found) std::printf("u at (%g, %g): (%.10g, %.10g)\n", args.probe[0], args.probe[1], probe_value.x(),
-                                 probe_value.y());
-  }
+  ElasticSummary summary{largest, l2, probe_found, probe_value, hung};
+  if (args.json) print_elastic_json(args, *p, r, summary);
+  else print_elastic_text(args, options, r, summary, d);
   if (!args.probe.empty() && !probe_found)
     std::cerr << "curvemesh: --probe (" << args.probe[0] << ", " << args.probe[1] << ") is not in the body\n";
   if (!r.converged) {
