@@ -67,22 +67,26 @@ class Fitter {
       return;
     }
     const Vec2 t0 = sign * unit_tangent(c_, a, lo_, hi_), t3 = sign * unit_tangent(c_, b, lo_, hi_);
-    // The C1 fit: the arms a third of the offset's speed times the interval.
-    const double h = (b - a) / 3;
-    CubicBezier best = hermite(p0, t0, h * offset_speed(c_, a, d_, lo_, hi_), p3, t3,
-                               h * offset_speed(c_, b, d_, lo_, hi_));
-    double error = distance(best, a, b);
-    // The midpoint fit: B(1/2) = (p0 + p3)/2 + 3/8·(a0·t0 − a1·t3) set to the offset's midpoint.
+    // The midpoint fit first (B(1/2) = (p0 + p3)/2 + 3/8·(a0·t0 − a1·t3) set to the offset's
+    // midpoint), then the C1 fit (the arms a third of the offset's speed times the interval): the
+    // first within the tolerance is taken, else the closer.
+    CubicBezier best;
+    double error = std::numeric_limits<double>::infinity();
+    const auto consider = [&](const CubicBezier& candidate) {
+      if (const double e = distance(candidate, a, b); e < error) best = candidate, error = e;
+      return error <= tolerance_;
+    };
     const Vec2 r = 8.0 / 3.0 * (offset_point(c_, (a + b) / 2, d_, lo_, hi_) - (p0 + p3) / 2);
     const double det = cross(t3, t0);  // of the system [t0, −t3]·(a0, a1) = r
+    bool done = false;
     if (std::abs(det) > 1e-6) {
       const double a0 = cross(t3, r) / det, a1 = cross(r, t0) / -det;
       const double chord = (p3 - p0).norm();
-      if (a0 >= 0 && a1 >= 0 && a0 <= 2 * chord && a1 <= 2 * chord) {
-        const CubicBezier mid = hermite(p0, t0, a0, p3, t3, a1);
-        if (const double e = distance(mid, a, b); e < error) best = mid, error = e;
-      }
+      if (a0 >= 0 && a1 >= 0 && a0 <= 2 * chord && a1 <= 2 * chord) done = consider(hermite(p0, t0, a0, p3, t3, a1));
     }
+    const double h = (b - a) / 3;
+    if (!done)
+      consider(hermite(p0, t0, h * offset_speed(c_, a, d_, lo_, hi_), p3, t3, h * offset_speed(c_, b, d_, lo_, hi_)));
     if (error <= tolerance_ || depth >= kMaxDepth || fits_ >= kMaxFits) {
       run_.pieces.push_back(best);
       run_.smooth.push_back(smooth);
@@ -105,7 +109,8 @@ class Fitter {
     return true;
   }
 
-  // The larger of the two one-sided distances between `piece` and the exact offset over [a, b]:
+  // The larger of the two one-sided distances between `piece` and the exact offset over [a, b]
+  // (or a distance above the tolerance, the first found):
   // from the offset at kChecks − 1 inner parameters to their closest points on the piece, and from
   // the piece, at two points between each two of those closest points, to the offset between the
   // parameters they came from (golden-section search). A piece that runs back on itself (closest
@@ -116,13 +121,13 @@ class Fitter {
     double worst = 0;
     for (int k = 1; k < kChecks; ++k) {
       t[k] = a + (b - a) * k / kChecks;
-      const ClosestPoint c = closest_point(piece, offset_point(c_, t[k], d_, lo_, hi_));
+      const ClosestPoint c = nearest_on(piece, offset_point(c_, t[k], d_, lo_, hi_), s[k - 1]);
       worst = std::max(worst, c.distance);
+      if (worst > tolerance_) return worst;  // a fit that fails need not be measured further
       s[k] = c.t;
       if (s[k] < s[k - 1] - 1e-6) return std::numeric_limits<double>::infinity();
       s[k] = std::max(s[k], s[k - 1]);
     }
-    if (worst > tolerance_) return worst;
     for (int k = 0; k < kChecks; ++k)
       for (const double f : {1.0 / 3, 2.0 / 3}) {
         const Vec2 q = piece.eval(s[k] + f * (s[k + 1] - s[k]));
@@ -131,20 +136,51 @@ class Fitter {
     return worst;
   }
 
-  // The distance from q to the exact offset over [a, b], by golden-section search.
+  // The point of `piece` nearest q, by Newton's method on (B(s) − q)·B'(s) from the nearest of
+  // 9 parameters from `from` on (a local minimum at worst: a distance too large, never too small
+  // for the point found, so a fit is never taken for one it is not); closest_point (App. B) when
+  // Newton's method leaves [0, 1] or does not settle.
+  static ClosestPoint nearest_on(const CubicBezier& piece, const Vec2& q, double from) {
+    double s = from, best = INFINITY;
+    for (int i = 0; i <= 8; ++i) {
+      const double x = from + (1 - from) * i / 8;
+      if (const double e = (piece.eval(x) - q).squaredNorm(); e < best) best = e, s = x;
+    }
+    for (int i = 0; i < 12; ++i) {
+      const Vec2 r = piece.eval(s) - q, v = piece.derivative(s);
+      const double slope = v.squaredNorm() + r.dot(piece.second_derivative(s));
+      if (!(slope > 0)) break;
+      const double step = r.dot(v) / slope, next = std::clamp(s - step, 0.0, 1.0);
+      const bool settled = std::abs(next - s) < 1e-13;
+      s = next;
+      if (settled) return {s, piece.eval(s), (piece.eval(s) - q).norm()};
+    }
+    return closest_point(piece, q);
+  }
+
+  // The distance from q to the exact offset over [a, b]: golden-section search for the foot of
+  // the perpendicular, then the distance to the offset's tangent line there (the offset runs along
+  // c's tangent), which leaves an error second-order in how far the search stopped from the foot.
+  // An end of [a, b] nearer than any inner point is taken as it is.
   double distance_to_offset(const Vec2& q, double a, double b) const {
     const auto at = [&](double t) { return (offset_point(c_, t, d_, lo_, hi_) - q).norm(); };
     constexpr double g = 0.6180339887498949;
+    const double lo = a, hi = b;
     double x = b - g * (b - a), y = a + g * (b - a), fx = at(x), fy = at(y);
-    for (int i = 0; i < 48; ++i) {
+    for (int i = 0; i < 26; ++i) {
       if (fx < fy) {
         b = y, y = x, fy = fx, x = b - g * (b - a), fx = at(x);
       } else {
         a = x, x = y, fx = fy, y = a + g * (b - a), fy = at(y);
       }
     }
-    return std::min({fx, fy, at(a), at(b)});
+    const double t = fx < fy ? x : y;
+    const double ends = std::min(at(lo), at(hi));
+    if (ends <= std::min(fx, fy)) return ends;
+    const Vec2 foot = offset_point(c_, t, d_, lo_, hi_);
+    return std::abs(cross(q - foot, unit_tangent(c_, t, lo_, hi_)));
   }
+
 
   const CubicBezier& c_;
   double d_, tolerance_, lo_, hi_;
