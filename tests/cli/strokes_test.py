@@ -124,6 +124,11 @@ check("--domain painted alone succeeds", r2.returncode == 0, r2.stderr[-800:])
 check("--domain painted alone reads strokes as areas (the same mesh)",
       stats2.get("domain", {}).get("triangles") == stats.get("domain", {}).get("triangles"), stats2.get("domain"))
 
+# --domain filled keeps fills alone: the icon fills nothing, strokes read as areas or not.
+r6 = run("mesh", icon, "-o", os.path.join(tmp.name, "filled.msh"), "--strokes", "areas", "--domain", "filled")
+check("--strokes areas --domain filled: the icon fills nothing (exit 1)", r6.returncode == 1 and "is empty" in r6.stderr,
+      r6.stderr[-500:])
+
 # --- the default is unchanged --------------------------------------------------------------------
 r3, plain, _ = mesh("plain", "--regions")
 r4, lines, stats4 = mesh("lines", "--regions", "--strokes", "lines")
