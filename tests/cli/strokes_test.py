@@ -129,6 +129,22 @@ r6 = run("mesh", icon, "-o", os.path.join(tmp.name, "filled.msh"), "--strokes", 
 check("--strokes areas --domain filled: the icon fills nothing (exit 1)", r6.returncode == 1 and "is empty" in r6.stderr,
       r6.stderr[-500:])
 
+# A filled and stroked element: two regions, the stroke painted over the fill's edge.
+shapes = os.path.join(examples, "overlapping-shapes.svg")
+areas_of = {}
+for strokes in ("lines", "areas"):
+    out = os.path.join(tmp.name, "shapes-" + strokes)
+    r7 = run("mesh", shapes, "-o", out + ".msh", "--stats", out + ".json", "-q", "--regions", "--strokes", strokes)
+    check(f"overlapping-shapes.svg --strokes {strokes} --regions succeeds", r7.returncode == 0, r7.stderr[-500:])
+    if r7.returncode == 0:
+        with open(out + ".json") as f:
+            areas_of[strokes] = {x["name"]: x["area"] for x in json.load(f)["regions"]}
+if len(areas_of) == 2:
+    a, l = areas_of["areas"], areas_of["lines"]
+    check("the filled and stroked rect has a fill region and a .stroke region", "rect#1" in a and "rect#1.stroke" in a, a)
+    check("the stroke covers the edge of the fill", a.get("rect#1", 0) < l.get("rect#1", 0), (a, l))
+    check("a stroke without fill is a .stroke region alone", "ellipse#3.stroke" in a and "ellipse#3" not in a, a)
+
 # --- the default is unchanged --------------------------------------------------------------------
 r3, plain, _ = mesh("plain", "--regions")
 r4, lines, stats4 = mesh("lines", "--regions", "--strokes", "lines")
