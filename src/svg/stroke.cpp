@@ -221,6 +221,26 @@ class Outliner {
   double tolerance_;  // of each offset cubic
 };
 
+// Whether the left offset of a closed path at distance d folds all the way round: the path bends
+// tighter than d towards its left everywhere (d·κ > 1, no offset cusp) and turns smoothly at every
+// joint. Then it is convex, and every point inside it is within d of it (the disc of radius ρ
+// about an inner point touching the path at its nearest point fits in the path's osculating
+// circle there, so ρ is at most the radius of curvature, below d): the stroke is all of the inside
+// of its other side, and this side's loop, winding the other way over the fold, would only cut a
+// hole into it.
+bool folds_all_round(const std::vector<CubicBezier>& segments, double d) {
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const CubicBezier& c = segments[i];
+    if (!geometry::cusp_parameters(c).empty() || !geometry::offset_cusp_parameters(c, d).empty()) return false;
+    const Vec2 v = c.derivative(0.5);
+    if (!(d * cross(v, c.second_derivative(0.5)) > std::pow(v.norm(), 3))) return false;
+    const Vec2 in = geometry::unit_tangent(segments[(i + segments.size() - 1) % segments.size()], 1.0);
+    const Vec2 out = geometry::unit_tangent(c, 0.0);
+    if (!(in.dot(out) > 0) || std::abs(cross(in, out)) > 1e-9) return false;
+  }
+  return true;
+}
+
 Subpath loop_of(Chain&& chain) {
   Subpath sp;
   sp.start = chain.curves.front().p[0];
@@ -398,8 +418,8 @@ void Outliner::outline(const Subpath& sp, std::vector<Subpath>& out) const {
   Chain left = side(segments, continues, closed), right = side(reversed, reversed_continues, closed);
   if (left.curves.empty() || right.curves.empty()) return;
   if (closed) {
-    out.push_back(loop_of(std::move(left)));
-    out.push_back(loop_of(std::move(right)));
+    if (!folds_all_round(segments, d_)) out.push_back(loop_of(std::move(left)));
+    if (!folds_all_round(reversed, d_)) out.push_back(loop_of(std::move(right)));
     return;
   }
   const Vec2 start = left.curves.front().p[0];

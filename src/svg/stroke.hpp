@@ -53,7 +53,9 @@ std::vector<Subpath> dash_subpaths(const std::vector<Subpath>& subpaths, const s
 // style.miter_limit is bevelled, as SVG says) and the inner side runs to the corner point and back,
 // so that the loop is the sum of each segment's band and each join's wedge (or straight across,
 // where that adds only a triangle inside both bands). A cusp of a curve
-// (where it turns back on itself) is joined as a corner of 180°. A subpath of no length paints a dot
+// (where it turns back on itself) is joined as a corner of 180°. A closed path bending tighter than
+// the half width towards one side all round keeps only its other side's loop (the inside is all
+// painted). A subpath of no length paints a dot
 // for round and square caps (an axis-aligned square: it has no direction). Each offset cubic is
 // within kStrokeTolerance·width of the exact offset.
 std::vector<Subpath> stroke_outline(const std::vector<Subpath>& subpaths, const StrokeStyle& style);

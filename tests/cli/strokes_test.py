@@ -10,6 +10,7 @@ stroke region.
 usage: strokes_test.py CURVEMESH_BINARY EXAMPLES_DIR
 """
 import json
+import math
 import os
 import struct
 import subprocess
@@ -128,6 +129,36 @@ check("--domain painted alone reads strokes as areas (the same mesh)",
 r6 = run("mesh", icon, "-o", os.path.join(tmp.name, "filled.msh"), "--strokes", "areas", "--domain", "filled")
 check("--strokes areas --domain filled: the icon fills nothing (exit 1)", r6.returncode == 1 and "is empty" in r6.stderr,
       r6.stderr[-500:])
+
+# Bending tighter than half the width: a cubic whose radius of curvature falls to 2.57 under a
+# stroke of width 8, circles of radius at and above half their widths (against rsvg-convert), and
+# one below (the union SVG 2 sweeps is a disc, π(r + w/2)²; cairo's stroker leaves a hole there).
+def tight_drawing(name, shapes):
+    path = os.path.join(tmp.name, name + ".svg")
+    with open(path, "w") as f:
+        f.write('<svg xmlns="http://www.w3.org/2000/svg" viewBox="-10 -10 60 40" fill="none" stroke="#000" '
+                f'stroke-linecap="round" stroke-linejoin="round">{shapes}</svg>')
+    out = os.path.join(tmp.name, name)
+    r = run("mesh", path, "-o", out + ".msh", "--stats", out + ".json", "-q", "--regions", "--domain", "painted")
+    check(f"{name}: mesh --domain painted succeeds", r.returncode == 0, r.stderr[-500:])
+    if r.returncode != 0:
+        return path, None
+    with open(out + ".json") as f:
+        return path, sum(x["area"] for x in json.load(f)["regions"])
+
+
+tight, tight_area = tight_drawing("tight", '<path d="M0 0 C 30 0 30 10 20 12" stroke-width="8"/>'
+                                           '<circle cx="38" cy="20" r="2" stroke-width="4"/>'
+                                           '<circle cx="4" cy="22" r="2" stroke-width="3"/>')
+r = subprocess.run(["rsvg-convert", "-w", "2400", "-h", "1600", tight, "-o", png], capture_output=True, text=True)
+tight_rendered = png_alpha(png).sum() * (60.0 / 2400) ** 2
+if tight_area is not None:
+    print(f"tight bends: mesh {tight_area:.4f}, rsvg-convert {tight_rendered:.4f}")
+    check("tight bends cover what rsvg-convert paints within 0.5 %",
+          abs(tight_area - tight_rendered) <= 0.005 * tight_rendered, (tight_area, tight_rendered))
+_, disc_area = tight_drawing("disc", '<circle cx="38" cy="4" r="2" stroke-width="8"/>')
+check("a circle of radius below half its width paints a disc", disc_area is not None and
+      abs(disc_area - math.pi * 6 ** 2) < 1e-6 * math.pi * 36, disc_area)
 
 # A filled and stroked element: two regions, the stroke painted over the fill's edge.
 shapes = os.path.join(examples, "overlapping-shapes.svg")

@@ -288,6 +288,11 @@ TEST(StrokeOutline, CircleRingAreaAndDotOfAZeroLengthSubpath) {
   const auto ring = svg::stroke_outline(svg::parse_path_data("M 5 0 A 5 5 0 1 1 -5 0 A 5 5 0 1 1 5 0 Z"),
                                         style(w, svg::LineJoin::miter, svg::LineCap::butt));
   EXPECT_NEAR(total_area(ring), kPi * ((r + w / 2) * (r + w / 2) - (r - w / 2) * (r - w / 2)), 1e-6);
+  // A circle of radius below half the width: its inside is all within the stroke, a disc.
+  const auto disc = svg::stroke_outline(svg::parse_path_data("M 2 0 A 2 2 0 1 1 -2 0 A 2 2 0 1 1 2 0 Z"),
+                                        style(8, svg::LineJoin::miter, svg::LineCap::butt));
+  EXPECT_EQ(disc.size(), 1u);
+  EXPECT_NEAR(total_area(disc), kPi * 6 * 6, 1e-6);
   const auto dot = svg::stroke_outline(path("M 3 3"), style(w, svg::LineJoin::miter, svg::LineCap::round));
   EXPECT_NEAR(total_area(dot), kPi * w * w / 4, 1e-8);
   EXPECT_TRUE(svg::stroke_outline(path("M 3 3"), style(w, svg::LineJoin::miter, svg::LineCap::butt)).empty());
