@@ -82,11 +82,13 @@ class Fitter {
     if (std::abs(det) > 1e-6) {
       const double a0 = cross(t3, r) / det, a1 = cross(r, t0) / -det;
       const double chord = (p3 - p0).norm();
-      if (a0 >= 0 && a1 >= 0 && a0 <= 2 * chord && a1 <= 2 * chord) done = consider(hermite(p0, t0, a0, p3, t3, a1));
+      if (a0 >= 0 && a1 >= 0 && a0 <= 2 * chord && a1 <= 2 * chord)
+        done = consider(hermite(p0, t0, a0, p3, t3, a1));
     }
     const double h = (b - a) / 3;
     if (!done)
-      consider(hermite(p0, t0, h * offset_speed(c_, a, d_, lo_, hi_), p3, t3, h * offset_speed(c_, b, d_, lo_, hi_)));
+      consider(hermite(p0, t0, h * offset_speed(c_, a, d_, lo_, hi_), p3, t3,
+                       h * offset_speed(c_, b, d_, lo_, hi_)));
     if (error <= tolerance_ || depth >= kMaxDepth || fits_ >= kMaxFits) {
       run_.pieces.push_back(best);
       run_.smooth.push_back(smooth);
@@ -105,7 +107,8 @@ class Fitter {
   // Whether the offset over [a, b] lies within half the tolerance of p0 (at 16 parameters).
   bool within_reach(const Vec2& p0, double a, double b) const {
     for (int k = 1; k <= kChecks; ++k)
-      if ((offset_point(c_, a + (b - a) * k / kChecks, d_, lo_, hi_) - p0).norm() > tolerance_ / 2) return false;
+      if ((offset_point(c_, a + (b - a) * k / kChecks, d_, lo_, hi_) - p0).norm() > tolerance_ / 2)
+        return false;
     return true;
   }
 
@@ -181,7 +184,6 @@ class Fitter {
     return std::abs(cross(q - foot, unit_tangent(c_, t, lo_, hi_)));
   }
 
-
   const CubicBezier& c_;
   double d_, tolerance_, lo_, hi_;
   OffsetRun& run_;
@@ -238,7 +240,10 @@ std::vector<double> offset_cusp_parameters(const CubicBezier& c, double d, doubl
       double x = t_prev, y = t, fx = f_prev;
       for (int k = 0; k < 60 && y - x > 1e-15; ++k) {
         const double m = (x + y) / 2, fm = cusp_function(c, m, d);
-        if ((fm < 0) == (fx < 0)) x = m, fx = fm; else y = m;
+        if ((fm < 0) == (fx < 0))
+          x = m, fx = fm;
+        else
+          y = m;
       }
       out.push_back((x + y) / 2);
     }

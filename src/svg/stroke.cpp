@@ -128,7 +128,8 @@ Subpath piece_between(const Subpath& sp, const std::vector<double>& lengths, dou
 }
 
 // The "on" intervals of the pattern along a subpath of length `total`.
-std::vector<std::pair<double, double>> dash_intervals(const std::vector<double>& pattern, double offset, double total) {
+std::vector<std::pair<double, double>> dash_intervals(const std::vector<double>& pattern, double offset,
+                                                      double total) {
   double period = 0;
   for (double x : pattern) period += x;
   std::vector<std::pair<double, double>> out;
@@ -211,7 +212,8 @@ class Outliner {
   Chain side(const std::vector<CubicBezier>& segments, const std::vector<char>& continues, bool closed) const;
   void append(Chain& chain, const geometry::OffsetRun& run, const Vec2& p, const Vec2& in, const Vec2& out,
               double room, bool continues) const;
-  void corner(Chain& chain, const Vec2& p, const Vec2& in, const Vec2& out, const Vec2& to, double room) const;
+  void corner(Chain& chain, const Vec2& p, const Vec2& in, const Vec2& out, const Vec2& to,
+              double room) const;
   void cap(Chain& chain, const Vec2& p, const Vec2& direction, const Vec2& to) const;
   void arc(Chain& chain, const Vec2& centre, const Vec2& to, double sweep) const;
   void dot(const Vec2& p, std::vector<Subpath>& out) const;
@@ -231,7 +233,8 @@ class Outliner {
 bool folds_all_round(const std::vector<CubicBezier>& segments, double d) {
   for (std::size_t i = 0; i < segments.size(); ++i) {
     const CubicBezier& c = segments[i];
-    if (!geometry::cusp_parameters(c).empty() || !geometry::offset_cusp_parameters(c, d).empty()) return false;
+    if (!geometry::cusp_parameters(c).empty() || !geometry::offset_cusp_parameters(c, d).empty())
+      return false;
     const Vec2 v = c.derivative(0.5);
     if (!(d * cross(v, c.second_derivative(0.5)) > std::pow(v.norm(), 3))) return false;
     const Vec2 in = geometry::unit_tangent(segments[(i + segments.size() - 1) % segments.size()], 1.0);
@@ -255,7 +258,8 @@ Subpath loop_of(Chain&& chain) {
 void Outliner::arc(Chain& chain, const Vec2& centre, const Vec2& to, double sweep) const {
   const Vec2 from = chain.end();
   const double start = std::atan2(from.y() - centre.y(), from.x() - centre.x());
-  const std::vector<CubicBezier> pieces = elliptic_arc_cubics({centre, d_, d_, 1, 0, start, start + sweep}, from, to);
+  const std::vector<CubicBezier> pieces =
+      elliptic_arc_cubics({centre, d_, d_, 1, 0, start, start + sweep}, from, to);
   for (std::size_t k = 0; k < pieces.size(); ++k) chain.add(pieces[k], k > 0);
 }
 
@@ -291,7 +295,8 @@ void Outliner::corner(Chain& chain, const Vec2& p, const Vec2& in, const Vec2& o
       // SVG 2 §13.5.3: the miter's length over the width is 1/sin(θ/2), θ the angle between the
       // segments; cos(φ/2) here, φ = π − θ the angle turned. Beyond the limit: a bevel.
       const double cos_half = std::sqrt(std::max(0.0, (1 + in.dot(out)) / 2));
-      if (cos_half > 0 && 1 / cos_half <= style_.miter_limit) chain.line_to(p + d_ * (a + b) / (1 + a.dot(b)));
+      if (cos_half > 0 && 1 / cos_half <= style_.miter_limit)
+        chain.line_to(p + d_ * (a + b) / (1 + a.dot(b)));
       chain.line_to(to);
       return;
     }
@@ -323,8 +328,8 @@ void Outliner::cap(Chain& chain, const Vec2& p, const Vec2& direction, const Vec
 
 // Appends one offset run after a corner at p (or at a cusp of the curve): the pieces continue the
 // chain directly when its end is within the tolerance of their start (a smooth joint).
-void Outliner::append(Chain& chain, const geometry::OffsetRun& run, const Vec2& p, const Vec2& in, const Vec2& out,
-                      double room, bool continues) const {
+void Outliner::append(Chain& chain, const geometry::OffsetRun& run, const Vec2& p, const Vec2& in,
+                      const Vec2& out, double room, bool continues) const {
   std::vector<CubicBezier> pieces = run.pieces;
   bool first_continues = false;
   if (!chain.curves.empty()) {
@@ -337,11 +342,13 @@ void Outliner::append(Chain& chain, const geometry::OffsetRun& run, const Vec2& 
       corner(chain, p, in, out, pieces.front().p[0], room);
     }
   }
-  for (std::size_t k = 0; k < pieces.size(); ++k) chain.add(pieces[k], k == 0 ? first_continues : run.smooth[k]);
+  for (std::size_t k = 0; k < pieces.size(); ++k)
+    chain.add(pieces[k], k == 0 ? first_continues : run.smooth[k]);
 }
 
 // The left offset of a path of segments with its corners (closed: the one at its start too).
-Chain Outliner::side(const std::vector<CubicBezier>& segments, const std::vector<char>& continues, bool closed) const {
+Chain Outliner::side(const std::vector<CubicBezier>& segments, const std::vector<char>& continues,
+                     bool closed) const {
   Chain chain;
   Vec2 in = Vec2::UnitX(), first_out = Vec2::UnitX();
   const auto chord = [&](std::size_t i) { return (segments[i].p[3] - segments[i].p[0]).norm(); };
@@ -380,7 +387,8 @@ void Outliner::dot(const Vec2& p, std::vector<Subpath>& out) const {
   // Clockwise as (x, y) go, as every band of outline() is (its left side first): loops overlapping
   // add up.
   if (style_.cap == LineCap::round) {
-    const std::vector<CubicBezier> half = elliptic_arc_cubics({p, d_, d_, 1, 0, 0, -std::numbers::pi}, east, west);
+    const std::vector<CubicBezier> half =
+        elliptic_arc_cubics({p, d_, d_, 1, 0, 0, -std::numbers::pi}, east, west);
     for (std::size_t k = 0; k < half.size(); ++k) chain.add(half[k], k > 0);
     arc(chain, p, east, -std::numbers::pi);
   } else {
@@ -424,7 +432,8 @@ void Outliner::outline(const Subpath& sp, std::vector<Subpath>& out) const {
   }
   const Vec2 start = left.curves.front().p[0];
   cap(left, segments.back().p[3], geometry::unit_tangent(segments.back(), 1.0), right.curves.front().p[0]);
-  for (std::size_t k = 0; k < right.curves.size(); ++k) left.add(right.curves[k], k > 0 && right.continues[k]);
+  for (std::size_t k = 0; k < right.curves.size(); ++k)
+    left.add(right.curves[k], k > 0 && right.continues[k]);
   cap(left, segments.front().p[0], -geometry::unit_tangent(segments.front(), 0.0), start);
   out.push_back(loop_of(std::move(left)));
 }
@@ -438,7 +447,8 @@ std::vector<Subpath> stroke_outline(const std::vector<Subpath>& subpaths, const 
   if (style.dashes.empty()) {
     for (const Subpath& sp : subpaths) outliner.outline(sp, out);
   } else {
-    for (const Subpath& sp : dash_subpaths(subpaths, style.dashes, style.dash_offset)) outliner.outline(sp, out);
+    for (const Subpath& sp : dash_subpaths(subpaths, style.dashes, style.dash_offset))
+      outliner.outline(sp, out);
   }
   return out;
 }

@@ -29,7 +29,7 @@ struct StrokeStyle {
   double miter_limit = 4;
   std::vector<double> dashes;  // as given (an odd count is repeated when dashing); empty: solid
   double dash_offset = 0;
-  bool non_scaling = false;    // vector-effect: non-scaling-stroke (not inherited)
+  bool non_scaling = false;  // vector-effect: non-scaling-stroke (not inherited)
 };
 
 // Reads one declaration into `style` when `name` is a property of StrokeStyle (then true; a value

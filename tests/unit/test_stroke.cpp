@@ -43,7 +43,8 @@ DenseOffset dense_offset(const CubicBezier& c, double d, double lo, double hi, i
 // samples, each within (distance + gap) of q, gap the largest distance between neighbouring
 // samples: every sample that close is refined by golden-section search on the parameters on each
 // side of it (several, where the offset crosses itself near q).
-double distance_to_offset(const CubicBezier& c, double d, double lo, double hi, const DenseOffset& dense, const Vec2& q) {
+double distance_to_offset(const CubicBezier& c, double d, double lo, double hi, const DenseOffset& dense,
+                          const Vec2& q) {
   const auto at = [&](double t) { return (geometry::offset_point(c, t, d, lo, hi) - q).norm(); };
   double nearest = INFINITY, gap = 0;
   for (std::size_t i = 0; i < dense.p.size(); ++i) {
@@ -60,7 +61,10 @@ double distance_to_offset(const CubicBezier& c, double d, double lo, double hi, 
       const double g = (std::sqrt(5.0) - 1) / 2;
       for (int k = 0; k < 60; ++k) {
         const double x = b - g * (b - a), y = a + g * (b - a);
-        if (at(x) < at(y)) b = y; else a = x;
+        if (at(x) < at(y))
+          b = y;
+        else
+          a = x;
       }
       best = std::min(best, at((a + b) / 2));
     }
@@ -88,8 +92,8 @@ Hausdorff hausdorff(const CubicBezier& c, double d, const std::vector<OffsetRun>
     }
     for (const CubicBezier& piece : run.pieces)
       for (int k = 0; k <= 400; ++k)
-        h.pieces_to_exact =
-            std::max(h.pieces_to_exact, distance_to_offset(c, d, run.t0, run.t1, dense, piece.eval(k / 400.0)));
+        h.pieces_to_exact = std::max(h.pieces_to_exact,
+                                     distance_to_offset(c, d, run.t0, run.t1, dense, piece.eval(k / 400.0)));
   }
   return h;
 }
@@ -106,7 +110,8 @@ void expect_offsets_within(const CubicBezier& c, double d, double tolerance) {
     for (const OffsetRun& run : runs) {
       ASSERT_FALSE(run.pieces.empty());
       EXPECT_LT(run.pieces.size(), 2000u);
-      for (std::size_t k = 1; k < run.pieces.size(); ++k) EXPECT_EQ(run.pieces[k].p[0], run.pieces[k - 1].p[3]);
+      for (std::size_t k = 1; k < run.pieces.size(); ++k)
+        EXPECT_EQ(run.pieces[k].p[0], run.pieces[k - 1].p[3]);
     }
     const Hausdorff h = hausdorff(c, side, runs);
     EXPECT_LE(h.exact_to_pieces, tolerance);
@@ -192,7 +197,9 @@ double total_area(const std::vector<svg::Subpath>& loops) {
   return std::abs(a);
 }
 
-std::vector<svg::Subpath> path(const char* d) { return svg::parse_path_data(d); }
+std::vector<svg::Subpath> path(const char* d) {
+  return svg::parse_path_data(d);
+}
 
 svg::StrokeStyle style(double width, svg::LineJoin join, svg::LineCap cap, double miter_limit = 4) {
   svg::StrokeStyle s;
@@ -212,9 +219,9 @@ double reach(const std::vector<svg::Subpath>& loops, const Vec2& p, const Vec2& 
 TEST(StrokeOutline, LoopsAreClosedAndCapsHaveTheirArea) {
   const double w = 2, length = 10;
   const auto line = path("M 0 0 L 10 0");
-  for (const auto& [cap, area] : {std::pair{svg::LineCap::butt, w * length},
-                                  std::pair{svg::LineCap::square, w * (length + w)},
-                                  std::pair{svg::LineCap::round, w * length + kPi * w * w / 4}}) {
+  for (const auto& [cap, area] :
+       {std::pair{svg::LineCap::butt, w * length}, std::pair{svg::LineCap::square, w * (length + w)},
+        std::pair{svg::LineCap::round, w * length + kPi * w * w / 4}}) {
     const auto loops = svg::stroke_outline(line, style(w, svg::LineJoin::miter, cap));
     ASSERT_EQ(loops.size(), 1u);
     EXPECT_EQ(loops[0].segments.back().p[3], loops[0].segments.front().p[0]);
@@ -225,12 +232,14 @@ TEST(StrokeOutline, LoopsAreClosedAndCapsHaveTheirArea) {
 }
 
 TEST(StrokeOutline, RoundCapIsACircleOfHalfTheWidth) {
-  const auto loops = svg::stroke_outline(path("M 0 0 L 10 0"), style(3, svg::LineJoin::round, svg::LineCap::round));
+  const auto loops =
+      svg::stroke_outline(path("M 0 0 L 10 0"), style(3, svg::LineJoin::round, svg::LineCap::round));
   double worst = 0, reach = 0;
   for (const CubicBezier& c : loops[0].segments)
     for (int k = 0; k <= 200; ++k) {
       const Vec2 q = c.eval(k / 200.0);
-      if (q.x() > 10 + 1e-12) worst = std::max(worst, std::abs((q - Vec2(10, 0)).norm() - 1.5)), reach = std::max(reach, q.x());
+      if (q.x() > 10 + 1e-12)
+        worst = std::max(worst, std::abs((q - Vec2(10, 0)).norm() - 1.5)), reach = std::max(reach, q.x());
     }
   EXPECT_LE(worst, svg::kArcTolerance * 1.5);
   EXPECT_NEAR(reach, 11.5, 1e-9);
@@ -240,7 +249,8 @@ TEST(StrokeOutline, MiterLengthAndItsLimit) {
   const double w = 2, d = w / 2;
   // A right angle: the miter's tip d/cos(45°) beyond the corner along the outer bisector (the
   // miter's length, tip to inner corner, twice that: w·√2, as SVG's w/sin(θ/2)).
-  const auto right = svg::stroke_outline(path("M 0 0 L 10 0 L 10 10"), style(w, svg::LineJoin::miter, svg::LineCap::butt));
+  const auto right =
+      svg::stroke_outline(path("M 0 0 L 10 0 L 10 10"), style(w, svg::LineJoin::miter, svg::LineCap::butt));
   const Vec2 bisector = Vec2(1, -1).normalized();
   EXPECT_NEAR(reach(right, {10, 0}, bisector), d * std::sqrt(2.0), 1e-12);
   // A sharp corner of θ between the segments: 1/sin(θ/2) ≈ 20 is beyond a limit of 4 (a bevel,
@@ -267,7 +277,9 @@ TEST(StrokeOutline, JoinsAddTheirWedgesToTheArea) {
   const double w = 2, d = 1;
   const auto l = path("M 0 0 L 10 0 L 10 10");
   const double bands = 2 * 10 * w;
-  const auto area = [&](svg::LineJoin join) { return total_area(svg::stroke_outline(l, style(w, join, svg::LineCap::butt))); };
+  const auto area = [&](svg::LineJoin join) {
+    return total_area(svg::stroke_outline(l, style(w, join, svg::LineCap::butt)));
+  };
   EXPECT_NEAR(area(svg::LineJoin::bevel), bands + d * d / 2, 1e-9);
   EXPECT_NEAR(area(svg::LineJoin::miter), bands + d * d, 1e-9);
   EXPECT_NEAR(area(svg::LineJoin::round), bands + kPi * d * d / 4, 1e-8);
@@ -331,8 +343,8 @@ TEST(Dashes, TotalLengthFollowsThePattern) {
   const auto curve = path("M 0 0 C 20 30 40 -30 60 0 S 100 10 90 40");
   double length = 0;
   for (const CubicBezier& c : curve[0].segments) length += c.length();
-  EXPECT_NEAR(dashed_length(svg::dash_subpaths(curve, {4, 1, 2}, 1.5)), expected_on_length({4, 1, 2}, 1.5, length),
-              1e-8);
+  EXPECT_NEAR(dashed_length(svg::dash_subpaths(curve, {4, 1, 2}, 1.5)),
+              expected_on_length({4, 1, 2}, 1.5, length), 1e-8);
   // Invalid patterns draw solid.
   EXPECT_EQ(svg::dash_subpaths(line, {5, -1}, 0).size(), 1u);
   EXPECT_EQ(svg::dash_subpaths(line, {0, 0}, 0).size(), 1u);
