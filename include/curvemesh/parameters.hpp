@@ -23,8 +23,13 @@ struct CURVEMESH_API Limits {
 };
 
 // What part of the meshed box a run gives out: all of it, what the drawing's filled elements cover
-// (the shape as it is seen), or the even-odd inside of its curves.
-enum class Domain { box, filled, evenodd };
+// (the shape as it is seen), the even-odd inside of its curves, or what some fill or stroke paints
+// (strokes read as areas).
+enum class Domain { box, filled, evenodd, painted };
+
+// What a stroked element contributes: its centre line (a curve of no width), or the outline of the
+// area its stroke paints, with the stroke's width, joins, caps and dashes.
+enum class Strokes { lines, areas };
 
 // The last stage a run makes: the exact triangulation, the optimized linear mesh, or the curved one.
 enum class StopAfter { triangulate, optimize, curve };
@@ -60,6 +65,7 @@ struct CURVEMESH_API Parameters {
 
   // Not the method's: what the run gives out.
   bool regions = false;                     // --regions: triangles tagged by the element painted on them
+  Strokes strokes = Strokes::lines;         // --strokes: a stroke as its centre line or as its area
   Domain domain = Domain::box;              // --domain: the part of the box meshed
   StopAfter stop_after = StopAfter::curve;  // --stop-after: the last stage (optimize when order is 1)
 

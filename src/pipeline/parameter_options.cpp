@@ -50,6 +50,13 @@ std::vector<ParameterOption> feature_options() {
        "round-off tolerance epsilon_m, relative to d: paths whose control points all lie within it of each other "
        "become isolated points, curves within it of a line become straight",
        CURVEMESH_FIELD(eps_m_rel, double)},
+      {"--strokes", "--strokes", "strokes", "", "features", Kind::choice, 0, 1, false, 0, {"lines", "areas"},
+       "what a stroked element draws: lines (its centre line, a curve of no width) or areas (the outline of the "
+       "area its stroke paints: offset curves at half the stroke-width, within 1e-8 of the width of the exact "
+       "offset, with stroke-linejoin, stroke-miterlimit, stroke-linecap, stroke-dasharray, stroke-dashoffset and "
+       "vector-effect: non-scaling-stroke; with --regions each stroke is a region of its own, named by its "
+       "element and '.stroke', painted over the element's fill); --domain painted implies areas",
+       CURVEMESH_FIELD(strokes, Strokes)},
   };
 }
 
@@ -118,10 +125,12 @@ std::vector<ParameterOption> run_options() {
        "patterns do not change what covers what; clip paths and masks are ignored (with a warning). The line "
        "closing an open filled subpath becomes a feature",
        CURVEMESH_FIELD(regions, bool)},
-      {"--domain", "--domain", "domain", "", "run", Kind::choice, 0, 2, false, 0, {"box", "filled", "evenodd"},
+      {"--domain", "--domain", "domain", "", "run", Kind::choice, 0, 3, false, 0,
+       {"box", "filled", "evenodd", "painted"},
        "the part of the box to mesh: box (all of it), filled (what some filled element covers: the shape as it is "
-       "seen, without the background) or evenodd (the even-odd inside of all curves); nodes no triangle uses are "
-       "dropped, lines on the domain's border keep their tag",
+       "seen, without the background), evenodd (the even-odd inside of all curves) or painted (what some fill or "
+       "stroke paints; implies --strokes areas); nodes no triangle uses are dropped, lines on the domain's border "
+       "keep their tag",
        CURVEMESH_FIELD(domain, Domain)},
       {"--stop-after", "--stop-after", "stop_after", "", "run", Kind::choice, 0, 2, false, 0,
        {"triangulate", "optimize", "curve"},

@@ -56,6 +56,10 @@ void Parameters::validate() const {
 
 namespace pipeline {
 
+bool strokes_as_areas(const Parameters& p) {
+  return p.strokes == Strokes::areas || p.domain == Domain::painted;
+}
+
 Resolved resolve(const Parameters& p, double diagonal) {
   Resolved r;
   r.d = diagonal > 0 ? diagonal : 1.0;

@@ -27,4 +27,8 @@ struct Resolved {
 // `diagonal` is d; a drawing of no size (a single point) is given unit lengths.
 Resolved resolve(const Parameters& parameters, double diagonal);
 
+// Whether strokes are read as areas: --strokes areas, or --domain painted, which needs them (the
+// one place that implication is made).
+bool strokes_as_areas(const Parameters& parameters);
+
 }  // namespace curvemesh::pipeline

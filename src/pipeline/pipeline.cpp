@@ -159,7 +159,7 @@ Stage stage_of(StopAfter s) {
 }
 
 bool reads_paint(const Parameters& p) {
-  return p.regions || p.domain == Domain::filled;
+  return p.regions || p.domain == Domain::filled || p.domain == Domain::painted;
 }
 
 // The faces of the finished mesh, the fills over them and the part given out (Parameters'
@@ -192,8 +192,9 @@ void paint(Result& r, const std::function<void(const std::string&)>& warn) {
   const regions::Painted& p = *r.painted;
   if (p.mesh.triangle_count() == 0)
     throw invalid(r.name + ": the domain '" + regions::domain_name(o.domain) + "' is empty (" +
-                  (o.domain == Domain::filled ? "nothing of the drawing is filled"
-                                                       : "no part of the box is enclosed by its curves") +
+                  (o.domain == Domain::filled    ? "nothing of the drawing is filled"
+                   : o.domain == Domain::painted ? "nothing of the drawing is filled or stroked"
+                                                 : "no part of the box is enclosed by its curves") +
                   ")");
   Json& stats = r.stats;
   stats["domain"] = {{"name", regions::domain_name(o.domain)},
@@ -327,6 +328,7 @@ void read_stage(Result& r, const Source& source, const Parameters& parameters, c
     svg::ReadOptions read;
     read.degenerate_tolerance_rel = parameters.eps_m_rel;
     read.close_filled_subpaths = reads_paint(parameters);
+    read.strokes_as_areas = strokes_as_areas(parameters);
     read.max_curves = parameters.limits.max_curves;
     read.max_elements = parameters.limits.max_elements;
     read.max_input_bytes = static_cast<std::uint64_t>(parameters.limits.max_input_mb * 1048576.0);

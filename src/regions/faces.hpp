@@ -41,17 +41,20 @@ struct Classification {
   Faces faces;
   std::vector<int> visible;  // per face: index of the topmost fill layer covering it, -1 none;
                              // empty when the fills were not classified
+  std::vector<int> filled;   // per face: the topmost layer covering it that is not a stroke's
+                             // (svg::FillLayer::stroke), -1 none; as `visible` when none is
 };
 
 // Which triangles a mesh keeps: the whole box, the faces some filled shape covers (the shape as
-// it is seen, the background gone), or the even–odd inside of all curves (odd depth): the
-// public curvemesh::Domain of Parameters.
+// it is seen, the background gone), the even–odd inside of all curves (odd depth), or the faces
+// some fill or stroke paints: the public curvemesh::Domain of Parameters.
 using Domain = curvemesh::Domain;
 const char* domain_name(Domain domain);
-// "box", "filled", "evenodd"; nothing for another name.
+// "box", "filled", "evenodd", "painted"; nothing for another name.
 std::optional<Domain> domain_named(const std::string& name);
 
-// Per triangle, whether it is in the domain. `filled` needs a classification of the fills.
+// Per triangle, whether it is in the domain. `filled` and `painted` need a classification of the
+// fills.
 std::vector<char> domain_triangles(const Classification& classification, Domain domain);
 
 // The triangles with keep[t] set, their nodes (renumbered, in order of first use) and the lines

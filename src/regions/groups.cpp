@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <map>
+#include <tuple>
 #include <utility>
 
 #include "regions/faces.hpp"
@@ -37,12 +38,13 @@ RegionKeys region_keys(const svg::FeatureSoup& soup) {
   out.names.push_back(unique_name("background", seen));
   out.source.push_back(-1);
   out.fill.emplace_back();
-  std::map<std::pair<int, std::string>, int> index;  // (element, fill) -> key
+  std::map<std::tuple<int, std::string, bool>, int> index;  // (element, fill, stroke) -> key
   for (const svg::FillLayer& layer : soup.fills) {
     const auto [it, inserted] =
-        index.try_emplace({layer.source, layer.fill.to_string()}, static_cast<int>(out.names.size()));
+        index.try_emplace({layer.source, layer.fill.to_string(), layer.stroke}, static_cast<int>(out.names.size()));
     if (inserted) {
-      out.names.push_back(unique_name(element_name(soup.sources.at(layer.source)), seen));
+      const std::string name = element_name(soup.sources.at(layer.source));
+      out.names.push_back(unique_name(layer.stroke ? name + ".stroke" : name, seen));
       out.source.push_back(layer.source);
       out.fill.push_back(layer.fill);
     }

@@ -11,6 +11,7 @@
 //                                        sources, s = 0 .. S-1), named by its id, else TAG#INDEX
 //   6 + S + k                            region k: 0 the background, then each (element, fill) the
 //                                        drawing paints, in paint order, shown by the domain or not
+//                                        (a stroke read as an area: its element, ".stroke")
 //
 // A line is in several groups at once: its kind's, "border" when on the border, and every drawn
 // element it lies on. Where curves of several elements coincide (two shapes sharing a side), the
@@ -35,9 +36,11 @@ int element_group(int source);
 int region_group(int key, int sources);
 
 // Every region a drawing can have, whatever part of it a mesh keeps: the background (key 0), then
-// each (element, fill) pair of its fill layers, in paint order of their first layer. Names are the
-// element's (element_name), "background", and a second use of a name gets "@2", a third "@3" (an
-// element painted in two colours through <use>, two elements with one id).
+// each (element, fill) pair of its fill layers, in paint order of their first layer, and each
+// (element, stroke paint) pair of its strokes read as areas. Names are the element's
+// (element_name), its stroke's that with ".stroke" after it, "background", and a second use of a
+// name gets "@2", a third "@3" (an element painted in two colours through <use>, two elements with
+// one id).
 struct RegionKeys {
   std::vector<int> of_layer;       // per fill layer: its key
   std::vector<std::string> names;  // per key

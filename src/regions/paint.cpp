@@ -140,12 +140,18 @@ Classification classify(const io::HighOrderMesh& mesh, const std::vector<svg::Fi
   outlines.reserve(fills.size());
   for (const svg::FillLayer& layer : fills) outlines.emplace_back(layer);
   c.visible.assign(face_count, -1);
+  c.filled.assign(face_count, -1);
   for (int f = 0; f < face_count; ++f) {
-    // The topmost covering layer: walk down the paint order, stop at the first that covers.
+    // The topmost covering layer: walk down the paint order, stop at the first that covers (and
+    // under a stroke, go on to the first fill that does).
     for (int l = static_cast<int>(fills.size()) - 1; l >= 0; --l) {
+      if (c.visible[f] >= 0 && fills[l].stroke) continue;
       if (covers(outlines[l], fills[l], samples[f], options, l, f)) {
-        c.visible[f] = l;
-        break;
+        if (c.visible[f] < 0) c.visible[f] = l;
+        if (!fills[l].stroke) {
+          c.filled[f] = l;
+          break;
+        }
       }
     }
   }

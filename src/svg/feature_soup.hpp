@@ -60,13 +60,16 @@ enum class FillRule : std::uint8_t { nonzero, evenodd };
 // One shape as the drawing fills it: an element drawn with a `fill` other than none (once per
 // <use> that draws it), with its outline as the renderer fills it: every subpath closed, an open
 // one by the straight line from its end back to its start. In paint order: a later layer is
-// painted over an earlier one.
+// painted over an earlier one. With strokes read as areas (svg::ReadOptions::strokes_as_areas),
+// an element's stroke is a layer too, just after its fill: the outline of the stroke, filled
+// nonzero with the stroke's paint.
 struct FillLayer {
   int source = -1;  // index into FeatureSoup::sources
-  Paint fill;
+  Paint fill;       // the stroke's paint for a stroke
   FillRule rule = FillRule::nonzero;
   std::vector<std::vector<CubicBezier>> subpaths;  // each a closed loop
   Box2 bounds;                                     // of the control points of every subpath
+  bool stroke = false;                             // the area of the element's stroke
 };
 
 struct SoupPoint {

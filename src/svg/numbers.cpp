@@ -145,4 +145,17 @@ std::optional<double> parse_number_with_unit(std::string_view text, std::string_
   return v;
 }
 
+std::optional<double> css_unit_scale(std::string_view unit, double percent_base) {
+  if (unit.empty() || unit == "px") return 1.0;
+  if (unit == "%") return percent_base / 100.0;
+  if (unit == "pt") return 96.0 / 72.0;
+  if (unit == "pc") return 16.0;
+  if (unit == "mm") return 96.0 / 25.4;
+  if (unit == "cm") return 96.0 / 2.54;
+  if (unit == "in") return 96.0;
+  if (unit == "em") return 16.0;
+  if (unit == "ex") return 8.0;
+  return std::nullopt;
+}
+
 }  // namespace curvemesh::svg

@@ -50,4 +50,8 @@ std::string_view trim_svg_whitespace(std::string_view s);
 // infinite or overflows a double.
 std::optional<double> parse_number_with_unit(std::string_view text, std::string_view* unit);
 
+// User units per one of a CSS length unit ("" and "px" 1, "pt", "pc", "mm", "cm", "in", "em" and
+// "ex" at the CSS default font size of 16); "%" is `percent_base` / 100. Nothing for another unit.
+std::optional<double> css_unit_scale(std::string_view unit, double percent_base);
+
 }  // namespace curvemesh::svg

@@ -22,6 +22,7 @@
 #include "svg/paint.hpp"
 #include "svg/path_data.hpp"
 #include "svg/shapes.hpp"
+#include "svg/stroke.hpp"
 #include "svg/style.hpp"
 #include "svg/transform.hpp"
 
@@ -39,6 +40,7 @@ struct Context {
   Paint color = Paint::rgb(0, 0, 0);
   Paint left, right;                    // data-color-left / data-color-right (none: not given)
   FillRule fill_rule = FillRule::nonzero;
+  StrokeStyle stroke_style;
   bool visible = true;
   double viewport_width = 100, viewport_height = 100;  // for percentage lengths
   int depth = 0;
@@ -173,6 +175,8 @@ class Reader {
   double length(pugi::xml_node node, const char* name, Axis axis, const Context& ctx, double fallback) const;
   void draw_shape(pugi::xml_node node, std::string_view tag, const Context& ctx);
   void emit(pugi::xml_node node, std::string_view tag, const std::vector<Subpath>& subpaths, const Context& ctx);
+  // ReadOptions::strokes_as_areas: the outline of the element's stroke, a fill layer of its own.
+  void emit_stroke_area(pugi::xml_node node, int source, const std::vector<Subpath>& subpaths, const Context& ctx);
   // Once the drawing's size is known: a subpath to an isolated point when all of it lies within
   // `tolerance` (ε_m·d) of one point (paper §4), else to the soup's curves.
   void add_to_soup(PendingSubpath& sp, double tolerance);
@@ -387,6 +391,7 @@ bool Reader::apply_style(pugi::xml_node node, std::string_view tag, Context& ctx
   // Cascade, lowest precedence first: presentation attributes, style sheet, style attribute.
   // Visited in place, never gathered: a style attribute may be as large as the file.
   std::vector<const Declarations*> sheet;
+  ctx.stroke_style.non_scaling = false;  // vector-effect is not inherited
   if (!stylesheet_.empty()) {
     try {
       stylesheet_.match(tag, text_of(node, "id"), text_of(node, "class"), sheet);
@@ -440,6 +445,9 @@ bool Reader::apply_declaration(pugi::xml_node node, std::string_view name, std::
     const std::string_view v = trim_svg_whitespace(value);
     if (v == "hidden" || v == "collapse") ctx.visible = false;
     if (v == "visible") ctx.visible = true;
+  } else {
+    const double w = ctx.viewport_width, h = ctx.viewport_height;  // SVG 1.1 §7.10: percentages
+    apply_stroke_declaration(name, value, std::sqrt((w * w + h * h) / 2), ctx.stroke_style);
   }
   return true;
 }
@@ -760,6 +768,9 @@ void Reader::emit(pugi::xml_node node, std::string_view tag, const std::vector<S
   Paint fill = ctx.fill;
   // A paint server that is not in the document paints nothing (there is no fallback colour here).
   if (fill.kind == Paint::Kind::url && !ids_.count(std::string_view(fill.url))) fill = Paint{};
+  const bool stroke_area = options_.strokes_as_areas && ctx.stroke.kind != Paint::Kind::none &&
+                           (ctx.stroke.kind != Paint::Kind::url || ids_.count(std::string_view(ctx.stroke.url))) &&
+                           ctx.stroke_style.width > 0 && (ctx.stroke_style.non_scaling || ctx.ctm.determinant() != 0);
   FillLayer* layer = nullptr;
   if (fill.kind != Paint::Kind::none) {
     soup_.fills.push_back({source, fill, ctx.fill_rule, {}, {}});
@@ -795,11 +806,49 @@ void Reader::emit(pugi::xml_node node, std::string_view tag, const std::vector<S
       layer->subpaths.push_back(std::move(loop));
       out.filled = true;
     }
+    // The stroke's outline stands for the centre line, which stays the edge of the fill only (seen
+    // between dashes).
+    if (stroke_area && !out.filled) continue;
+    if (stroke_area) out.stroke = Paint{};
     // A subpath without a segment becomes an isolated point, which costs as much as a curve.
     curve_count_ += std::max<std::size_t>(1, out.segments.size());
     if (curve_count_ > options_.max_curves) too_many_curves(node);
     pending_.push_back(std::move(out));
   }
+  if (stroke_area) emit_stroke_area(node, source, subpaths, ctx);
+}
+
+// The stroke painted over the element's fill (SVG 2 §13.5: the stroke shape, filled nonzero). A
+// non-scaling stroke's width is in the root's user space (what this reader's output is in, for
+// the screen): the path is offset after its transform; any other is offset in the element's user
+// space and transformed with it, as a non-uniform transform draws it.
+void Reader::emit_stroke_area(pugi::xml_node node, int source, const std::vector<Subpath>& subpaths,
+                              const Context& ctx) {
+  const auto mapped = [&](std::vector<Subpath> paths) {
+    for (Subpath& sp : paths) {
+      sp.start = ctx.ctm.apply(sp.start);
+      for (CubicBezier& c : sp.segments)
+        for (Vec2& q : c.p) q = ctx.ctm.apply(q);
+    }
+    return paths;
+  };
+  const std::vector<Subpath> outline = ctx.stroke_style.non_scaling
+                                           ? stroke_outline(mapped(subpaths), ctx.stroke_style)
+                                           : mapped(stroke_outline(subpaths, ctx.stroke_style));
+  FillLayer layer{source, ctx.stroke, FillRule::nonzero, {}, {}, true};
+  for (const Subpath& sp : outline) {
+    for (const CubicBezier& c : sp.segments) {
+      for (const Vec2& q : c.p)
+        if (!std::isfinite(q.x()) || !std::isfinite(q.y())) fail(node, "coordinates overflow a double");
+      layer.bounds.add(c.control_bounds());
+    }
+    layer.subpaths.push_back(sp.segments);
+    PendingSubpath out{sp.segments, sp.start, source, Paint{}, ctx.stroke, {}, {}, true, true, sp.continues};
+    curve_count_ += out.segments.size();
+    if (curve_count_ > options_.max_curves) too_many_curves(node);
+    pending_.push_back(std::move(out));
+  }
+  if (!layer.subpaths.empty()) soup_.fills.push_back(std::move(layer));
 }
 
 // ---------------------------------------------------------------------------------------------

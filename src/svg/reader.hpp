@@ -20,6 +20,10 @@ struct ReadOptions {
   // degenerate ones): the edge of the filled shape becomes a feature, so the mesh's faces follow
   // the paint (regions/). Off, the curves are the drawn outlines alone.
   bool close_filled_subpaths = false;
+  // Each stroked element (stroke not none, width above 0) draws the outline of its stroke instead
+  // of its centre line (svg/stroke.hpp), and that area is a fill layer of the stroke's paint
+  // (FillLayer::stroke) painted over the element's fill. Off, a stroke is its centre line alone.
+  bool strokes_as_areas = false;
   // Refuse documents nested deeper than this (elements inside elements, <use> included).
   int max_depth = 512;
   // Refuse documents that expand (through <use>) to more curves or elements than this: a small

@@ -18,8 +18,10 @@ using Declarations = std::vector<std::pair<std::string, std::string>>;
 
 // The properties the reader takes from presentation attributes and CSS; a style sheet keeps no
 // other.
-inline constexpr std::array<const char*, 8> kStyleProperties = {
-    "fill", "stroke", "color", "display", "visibility", "fill-rule", "clip-path", "mask"};
+inline constexpr std::array<const char*, 15> kStyleProperties = {
+    "fill",           "stroke",           "color",          "display",           "visibility",
+    "fill-rule",      "clip-path",        "mask",           "stroke-width",      "stroke-linejoin",
+    "stroke-linecap", "stroke-miterlimit", "stroke-dasharray", "stroke-dashoffset", "vector-effect"};
 
 // Fixed limits of the reader on the style sheets of one document. Drawings have a few hundred
 // rules (in openclipart at most 388 selectors and 749 declarations); a small hostile sheet could

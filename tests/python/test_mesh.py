@@ -271,8 +271,10 @@ def test_options_and_defaults():
         "mu", "epsilon", "eps_m", "edge_length", "min_edge_length", "min_angle", "junction_angle", "order", "linear",
         "curve_tolerance", "max_iterations", "stop_amips", "box_margin", "curved_stop_amips", "max_curved_passes",
         "features", "max_input_mb", "max_elements", "max_curves", "max_triangles", "regions", "domain", "stop_after",
+        "strokes",
     }
     assert curvemesh.OPTIONS["regions"] is False and curvemesh.OPTIONS["domain"] == "box"
+    assert curvemesh.OPTIONS["strokes"] == "lines"
     assert curvemesh.OPTIONS["stop_after"] == "curve"
     assert curvemesh.OPTIONS["edge_length"] == 0.05 and curvemesh.OPTIONS["linear"] is False
     assert curvemesh.OPTIONS["order"] == 3 and curvemesh.OPTIONS["curve_tolerance"] == 0.0
@@ -372,6 +374,8 @@ def test_regions_domain_and_stop_after_as_on_the_command_line(examples, run_cli,
         (dict(domain="filled"), ["--domain", "filled"]),
         (dict(regions=True, domain="evenodd", order=1), ["--regions", "--domain", "evenodd", "--order", "1"]),
         (dict(stop_after="optimize"), ["--stop-after", "optimize"]),
+        (dict(strokes="areas", regions=True, order=1), ["--strokes", "areas", "--regions", "--order", "1"]),
+        (dict(domain="painted", order=1), ["--domain", "painted", "--order", "1"]),
     ]
     for options, cli in cases:
         run_cli("mesh", svg, *cli, "-o", tmp_path / "cli.msh", "--msh-version", "2.2")
@@ -379,7 +383,7 @@ def test_regions_domain_and_stop_after_as_on_the_command_line(examples, run_cli,
         assert (tmp_path / "py.msh").read_bytes() == (tmp_path / "cli.msh").read_bytes(), options
     assert curvemesh.mesh(svg, stop_after="triangulate").order == 1
     assert len(curvemesh.mesh(svg, domain="filled").triangles) < len(curvemesh.mesh(svg).triangles)
-    with pytest.raises(ValueError, match="--domain .'inside'. must be one of box, filled, evenodd"):
+    with pytest.raises(ValueError, match="--domain .'inside'. must be one of box, filled, evenodd, painted"):
         curvemesh.mesh(svg, domain="inside")
     with pytest.raises(TypeError):
         curvemesh.mesh(svg, regions="yes")

@@ -1,0 +1,279 @@
+// Offset curves approximated by cubics. Each piece interpolates the exact offset at its ends with
+// the exact tangent direction there (a G1 Hermite fit); of two choices of the arms' lengths —
+// the offset's own speed (a C1 Hermite fit, error O(h⁴)), or the lengths that put the cubic's
+// midpoint on the offset's (exact for circles, as the standard arc cubic) — the closer is kept, and
+// a piece still farther than the tolerance is cut in two. The offset's cusps (where the curve bends
+// tighter than |d|, Farouki & Neff 1990, "Analytic properties of plane offset curves") are cut
+// at first: there its direction turns over, which no cubic of the kind above follows.
+#include "geometry/offset.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "geometry/bezier_analysis.hpp"
+#include "geometry/closest_point.hpp"
+
+namespace curvemesh::geometry {
+
+namespace {
+
+// The size of the control polygon: the scale of "small" for the curve's derivatives.
+double polygon_length(const CubicBezier& c) {
+  return (c.p[1] - c.p[0]).norm() + (c.p[2] - c.p[1]).norm() + (c.p[3] - c.p[2]).norm();
+}
+
+// |c'|³ − d·(c' × c''): the sign of 1 − d·κ times |c'|³, without dividing by |c'|.
+double cusp_function(const CubicBezier& c, double t, double d) {
+  const Vec2 v = c.derivative(t);
+  const double s = v.norm();
+  return s * s * s - d * cross(v, c.second_derivative(t));
+}
+
+// The exact offset's speed |c'|·|1 − d·κ| at t, its limit from inside [a, b] where c' vanishes.
+double offset_speed(const CubicBezier& c, double t, double d, double a, double b) {
+  const double small = 1e-9 * polygon_length(c);
+  Vec2 v = c.derivative(t);
+  if (v.norm() <= small) {
+    t += (t <= a ? 1e-7 : -1e-7) * (b - a);
+    v = c.derivative(t);
+  }
+  const double s = v.norm();
+  if (s == 0) return 0;
+  return std::abs(s - d * cross(v, c.second_derivative(t)) / (s * s));
+}
+
+// One approximating cubic: the exact ends and end directions, arms of lengths a0 and a1.
+CubicBezier hermite(const Vec2& p0, const Vec2& t0, double a0, const Vec2& p3, const Vec2& t3, double a1) {
+  return {p0, p0 + a0 * t0, p3 - a1 * t3, p3};
+}
+
+// The cubics of one interval [a, b] of constant direction of travel (no offset cusp inside),
+// `sign` that direction relative to the curve's.
+class Fitter {
+ public:
+  Fitter(const CubicBezier& c, double d, double tolerance, double lo, double hi, OffsetRun& run)
+      : c_(c), d_(d), tolerance_(tolerance), lo_(lo), hi_(hi), run_(run) {}
+
+  void fit(double a, double b, double sign, bool smooth, int depth) {
+    ++fits_;
+    const Vec2 p0 = offset_point(c_, a, d_, lo_, hi_), p3 = offset_point(c_, b, d_, lo_, hi_);
+    // An interval whose offset stays within the tolerance of its start (beside a cusp of the curve,
+    // where roots of 1 − d·κ crowd into a few ulps): its chord is close enough.
+    if (within_reach(p0, a, b)) {
+      run_.pieces.push_back(CubicBezier::line(p0, p3));
+      run_.smooth.push_back(smooth);
+      return;
+    }
+    const Vec2 t0 = sign * unit_tangent(c_, a, lo_, hi_), t3 = sign * unit_tangent(c_, b, lo_, hi_);
+    // The midpoint fit first (B(1/2) = (p0 + p3)/2 + 3/8·(a0·t0 − a1·t3) set to the offset's
+    // midpoint), then the C1 fit (the arms a third of the offset's speed times the interval): the
+    // first within the tolerance is taken, else the closer.
+    CubicBezier best;
+    double error = std::numeric_limits<double>::infinity();
+    const auto consider = [&](const CubicBezier& candidate) {
+      if (const double e = distance(candidate, a, b); e < error) best = candidate, error = e;
+      return error <= tolerance_;
+    };
+    const Vec2 r = 8.0 / 3.0 * (offset_point(c_, (a + b) / 2, d_, lo_, hi_) - (p0 + p3) / 2);
+    const double det = cross(t3, t0);  // of the system [t0, −t3]·(a0, a1) = r
+    bool done = false;
+    if (std::abs(det) > 1e-6) {
+      const double a0 = cross(t3, r) / det, a1 = cross(r, t0) / -det;
+      const double chord = (p3 - p0).norm();
+      if (a0 >= 0 && a1 >= 0 && a0 <= 2 * chord && a1 <= 2 * chord)
+        done = consider(hermite(p0, t0, a0, p3, t3, a1));
+    }
+    const double h = (b - a) / 3;
+    if (!done)
+      consider(hermite(p0, t0, h * offset_speed(c_, a, d_, lo_, hi_), p3, t3,
+                       h * offset_speed(c_, b, d_, lo_, hi_)));
+    if (error <= tolerance_ || depth >= kMaxDepth || fits_ >= kMaxFits) {
+      run_.pieces.push_back(best);
+      run_.smooth.push_back(smooth);
+      return;
+    }
+    const double m = (a + b) / 2;
+    fit(a, m, sign, smooth, depth + 1);
+    fit(m, b, sign, true, depth + 1);
+  }
+
+ private:
+  static constexpr int kMaxDepth = 40;
+  static constexpr int kMaxFits = 1 << 16;  // a bound on the work for one curve, whatever happens
+  static constexpr int kChecks = 16;
+
+  // Whether the offset over [a, b] lies within half the tolerance of p0 (at 16 parameters).
+  bool within_reach(const Vec2& p0, double a, double b) const {
+    for (int k = 1; k <= kChecks; ++k)
+      if ((offset_point(c_, a + (b - a) * k / kChecks, d_, lo_, hi_) - p0).norm() > tolerance_ / 2)
+        return false;
+    return true;
+  }
+
+  // The larger of the two one-sided distances between `piece` and the exact offset over [a, b]
+  // (or a distance above the tolerance, the first found):
+  // from the offset at kChecks − 1 inner parameters to their closest points on the piece, and from
+  // the piece, at two points between each two of those closest points, to the offset between the
+  // parameters they came from (golden-section search). A piece that runs back on itself (closest
+  // points out of order by more than round-off) fails at once.
+  double distance(const CubicBezier& piece, double a, double b) const {
+    std::array<double, kChecks + 1> t{}, s{};
+    t[0] = a, s[0] = 0, t[kChecks] = b, s[kChecks] = 1;
+    double worst = 0;
+    for (int k = 1; k < kChecks; ++k) {
+      t[k] = a + (b - a) * k / kChecks;
+      const ClosestPoint c = nearest_on(piece, offset_point(c_, t[k], d_, lo_, hi_), s[k - 1]);
+      worst = std::max(worst, c.distance);
+      if (worst > tolerance_) return worst;  // a fit that fails need not be measured further
+      s[k] = c.t;
+      if (s[k] < s[k - 1] - 1e-6) return std::numeric_limits<double>::infinity();
+      s[k] = std::max(s[k], s[k - 1]);
+    }
+    for (int k = 0; k < kChecks; ++k)
+      for (const double f : {1.0 / 3, 2.0 / 3}) {
+        const Vec2 q = piece.eval(s[k] + f * (s[k + 1] - s[k]));
+        worst = std::max(worst, distance_to_offset(q, t[std::max(k - 1, 0)], t[std::min(k + 2, kChecks)]));
+      }
+    return worst;
+  }
+
+  // The point of `piece` nearest q, by Newton's method on (B(s) − q)·B'(s) from the nearest of
+  // 9 parameters from `from` on (a local minimum at worst: a distance too large, never too small
+  // for the point found, so a fit is never taken for one it is not); closest_point (App. B) when
+  // Newton's method leaves [0, 1] or does not settle.
+  static ClosestPoint nearest_on(const CubicBezier& piece, const Vec2& q, double from) {
+    double s = from, best = INFINITY;
+    for (int i = 0; i <= 8; ++i) {
+      const double x = from + (1 - from) * i / 8;
+      if (const double e = (piece.eval(x) - q).squaredNorm(); e < best) best = e, s = x;
+    }
+    for (int i = 0; i < 12; ++i) {
+      const Vec2 r = piece.eval(s) - q, v = piece.derivative(s);
+      const double slope = v.squaredNorm() + r.dot(piece.second_derivative(s));
+      if (!(slope > 0)) break;
+      const double step = r.dot(v) / slope, next = std::clamp(s - step, 0.0, 1.0);
+      const bool settled = std::abs(next - s) < 1e-13;
+      s = next;
+      if (settled) return {s, piece.eval(s), (piece.eval(s) - q).norm()};
+    }
+    return closest_point(piece, q);
+  }
+
+  // The distance from q to the exact offset over [a, b]: golden-section search for the foot of
+  // the perpendicular, then the distance to the offset's tangent line there (the offset runs along
+  // c's tangent), which leaves an error second-order in how far the search stopped from the foot.
+  // An end of [a, b] nearer than any inner point is taken as it is.
+  double distance_to_offset(const Vec2& q, double a, double b) const {
+    const auto at = [&](double t) { return (offset_point(c_, t, d_, lo_, hi_) - q).norm(); };
+    constexpr double g = 0.6180339887498949;
+    const double lo = a, hi = b;
+    double x = b - g * (b - a), y = a + g * (b - a), fx = at(x), fy = at(y);
+    for (int i = 0; i < 26; ++i) {
+      if (fx < fy) {
+        b = y, y = x, fy = fx, x = b - g * (b - a), fx = at(x);
+      } else {
+        a = x, x = y, fx = fy, y = a + g * (b - a), fy = at(y);
+      }
+    }
+    const double t = fx < fy ? x : y;
+    const double ends = std::min(at(lo), at(hi));
+    if (ends <= std::min(fx, fy)) return ends;
+    const Vec2 foot = offset_point(c_, t, d_, lo_, hi_);
+    return std::abs(cross(q - foot, unit_tangent(c_, t, lo_, hi_)));
+  }
+
+  const CubicBezier& c_;
+  double d_, tolerance_, lo_, hi_;
+  OffsetRun& run_;
+  int fits_ = 0;
+};
+
+}  // namespace
+
+Vec2 unit_normal(const CubicBezier& c, double t, double lo, double hi) {
+  const Vec2 u = unit_tangent(c, t, lo, hi);
+  return {-u.y(), u.x()};
+}
+
+Vec2 offset_point(const CubicBezier& c, double t, double d, double lo, double hi) {
+  return c.eval(t) + d * unit_normal(c, t, lo, hi);
+}
+
+std::vector<double> cusp_parameters(const CubicBezier& c) {
+  // c'/3 = (A − 2B + C)·t² + 2(B − A)·t + A with the control polygon's legs A, B, C: both
+  // coordinates vanish at a cusp; the roots of one are the candidates, checked on the other.
+  const Vec2 A = c.p[1] - c.p[0], B = c.p[2] - c.p[1], C = c.p[3] - c.p[2];
+  const Vec2 q2 = A - 2 * B + C, q1 = 2 * (B - A);
+  const double small = 1e-9 * polygon_length(c);
+  std::vector<double> out;
+  for (int axis = 0; axis < 2; ++axis) {
+    const double a = q2[axis], b = q1[axis], k = A[axis];
+    std::vector<double> roots;
+    if (std::abs(a) > 1e-14 * polygon_length(c)) {
+      const double disc = b * b - 4 * a * k;
+      if (disc >= 0) {
+        const double s = std::sqrt(disc);
+        roots = {(-b - s) / (2 * a), (-b + s) / (2 * a)};
+      }
+    } else if (b != 0) {
+      roots = {-k / b};
+    }
+    for (double t : roots)
+      if (t > 0 && t < 1 && c.derivative(t).norm() <= small) out.push_back(t);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end(), [](double x, double y) { return y - x < 1e-9; }), out.end());
+  return out;
+}
+
+std::vector<double> offset_cusp_parameters(const CubicBezier& c, double d, double lo, double hi) {
+  constexpr int kSamples = 64;
+  std::vector<double> out;
+  const double margin = 1e-9 * (hi - lo);
+  double t_prev = lo + margin, f_prev = cusp_function(c, t_prev, d);
+  for (int i = 1; i <= kSamples; ++i) {
+    const double t = i == kSamples ? hi - margin : lo + (hi - lo) * i / kSamples;
+    const double f = cusp_function(c, t, d);
+    if ((f_prev < 0) != (f < 0) && f_prev != 0) {
+      double x = t_prev, y = t, fx = f_prev;
+      for (int k = 0; k < 60 && y - x > 1e-15; ++k) {
+        const double m = (x + y) / 2, fm = cusp_function(c, m, d);
+        if ((fm < 0) == (fx < 0))
+          x = m, fx = fm;
+        else
+          y = m;
+      }
+      out.push_back((x + y) / 2);
+    }
+    t_prev = t, f_prev = f;
+  }
+  return out;
+}
+
+std::vector<OffsetRun> offset_cubic(const CubicBezier& c, double d, double tolerance) {
+  std::vector<OffsetRun> runs;
+  if (polygon_length(c) == 0) return runs;
+  std::vector<double> ends = cusp_parameters(c);
+  ends.insert(ends.begin(), 0.0);
+  ends.push_back(1.0);
+  for (std::size_t r = 0; r + 1 < ends.size(); ++r) {
+    OffsetRun run;
+    run.t0 = ends[r], run.t1 = ends[r + 1];
+    std::vector<double> cuts = offset_cusp_parameters(c, d, run.t0, run.t1);
+    cuts.insert(cuts.begin(), run.t0);
+    cuts.push_back(run.t1);
+    Fitter fitter(c, d, tolerance, run.t0, run.t1, run);
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+      const double a = cuts[k], b = cuts[k + 1];
+      // The direction of travel on (a, b): that of the curve where d·κ < 1, reversed where not.
+      const double sign = cusp_function(c, (a + b) / 2, d) < 0 ? -1.0 : 1.0;
+      fitter.fit(a, b, sign, false, 0);
+    }
+    runs.push_back(std::move(run));
+  }
+  return runs;
+}
+
+}  // namespace curvemesh::geometry

@@ -1,0 +1,191 @@
+#!/usr/bin/env python3
+"""Command-line contract of `curvemesh mesh --strokes areas`: a stroke-only icon (examples/
+stroked-icon.svg: round caps and joins, a circle, a curve, a line, a polyline, a dashed line) meshed
+with --strokes areas --regions --domain painted covers what librsvg paints (the painted pixels of
+its rendering at high resolution, weighted by their coverage) to 0.5 %; each stroke is a region
+named ELEMENT.stroke; the mesh is certified by `curvemesh check`; --domain painted alone reads
+strokes as areas too; and the default, --strokes lines, gives the same bytes as no option and no
+stroke region.
+
+usage: strokes_test.py CURVEMESH_BINARY EXAMPLES_DIR
+"""
+import json
+import math
+import os
+import struct
+import subprocess
+import sys
+import tempfile
+import zlib
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import check, finish  # noqa: E402
+
+binary, examples = sys.argv[1], sys.argv[2]
+icon = os.path.join(examples, "stroked-icon.svg")
+tmp = tempfile.TemporaryDirectory()
+try:
+    import numpy as np
+except ImportError as e:  # the Debian package python3-numpy
+    print(f"strokes_test: {e}", file=sys.stderr)
+    sys.exit(1)
+
+
+def run(*args):
+    return subprocess.run([binary, *args], capture_output=True, text=True, timeout=600)
+
+
+def mesh(name, *extra):
+    out = os.path.join(tmp.name, name)
+    r = run("mesh", icon, "-o", out + ".msh", "--stats", out + ".json", "-q", *extra)
+    stats = {}
+    if r.returncode == 0:
+        with open(out + ".json") as f:
+            stats = json.load(f)
+    return r, out, stats
+
+
+def png_alpha(path):
+    """The alpha channel of an 8-bit RGBA, non-interlaced PNG (what rsvg-convert writes), as floats
+    in [0, 1]: PNG's five row filters undone (ISO/IEC 15948 §9)."""
+    data = open(path, "rb").read()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    pos, idat, width, height = 8, b"", 0, 0
+    while pos < len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + length]
+        if kind == b"IHDR":
+            width, height, depth, colour, _, _, interlace = struct.unpack(">IIBBBBB", body)
+            assert depth == 8 and colour == 6 and interlace == 0, (depth, colour, interlace)
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + length
+    raw = np.frombuffer(zlib.decompress(idat), dtype=np.uint8).reshape(height, 1 + 4 * width)
+    rows = np.zeros((height, 4 * width), dtype=np.uint8)
+    previous = np.zeros(4 * width, dtype=np.int64)
+    for y in range(height):
+        kind, line = raw[y, 0], raw[y, 1:].astype(np.int64)
+        if kind == 0:
+            row = line
+        elif kind == 1:  # Sub: each channel a running sum along the row
+            row = np.cumsum(line.reshape(width, 4), axis=0).reshape(-1) % 256
+        elif kind == 2:  # Up
+            row = (line + previous) % 256
+        else:  # Average or Paeth: each byte depends on the one before it
+            row = np.zeros_like(line)
+            for x in range(4 * width):
+                a = row[x - 4] if x >= 4 else 0
+                b = previous[x]
+                if kind == 3:
+                    row[x] = (line[x] + (a + b) // 2) % 256
+                else:
+                    c = previous[x - 4] if x >= 4 else 0
+                    p = a + b - c
+                    pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                    predictor = a if pa <= pb and pa <= pc else (b if pb <= pc else c)
+                    row[x] = (line[x] + predictor) % 256
+        rows[y] = row
+        previous = row
+    return rows.reshape(height, width, 4)[:, :, 3] / 255.0
+
+
+# --- the painted area: librsvg's rendering against the mesh's -------------------------------
+pixels = 2400  # 100 per unit of the 24 × 24 viewBox
+png = os.path.join(tmp.name, "icon.png")
+r = subprocess.run(["rsvg-convert", "-w", str(pixels), "-h", str(pixels), icon, "-o", png], capture_output=True, text=True)
+check("rsvg-convert renders the icon", r.returncode == 0, r.stderr)
+rendered = png_alpha(png).sum() * (24.0 / pixels) ** 2
+check("the rendering paints something", rendered > 10, rendered)
+
+r, out, stats = mesh("areas", "--strokes", "areas", "--regions", "--domain", "painted")
+check("mesh --strokes areas --regions --domain painted succeeds", r.returncode == 0, r.stderr[-800:])
+regions = stats.get("regions", [])
+names = sorted(x["name"] for x in regions)
+area = sum(x["area"] for x in regions)
+print(f"painted area: mesh {area:.4f}, rsvg-convert {rendered:.4f} ({100 * (area - rendered) / rendered:+.3f} %)")
+check("the mesh covers the painted area within 0.5 %", abs(area - rendered) <= 0.005 * rendered,
+      f"mesh {area}, rendered {rendered}")
+for element in ("face", "smile", "brow", "check", "ground"):
+    check(f"a region {element}.stroke", f"{element}.stroke" in names, names)
+check("no background in the painted domain", "background" not in names, names)
+check("every region is a stroke's, painted black", all(x["name"].endswith(".stroke") and x["fill"] == "#000000"
+                                                       for x in regions), regions)
+c = run("check", out + ".msh")
+check("curvemesh check certifies the mesh", c.returncode == 0, (c.stdout + c.stderr)[-800:])
+
+# The dashed line: 4 dashes of 2 with round caps of radius 1 (the dash pattern 2 3 along 18).
+ground = [x for x in regions if x["name"] == "ground.stroke"]
+dashes = 4 * (2 * 2 + 3.141592653589793)
+check("the dashed line's area is its four capped dashes'", ground and abs(ground[0]["area"] - dashes) < 1e-3 * dashes,
+      ground)
+
+# --domain painted implies --strokes areas.
+r2, _, stats2 = mesh("painted", "--domain", "painted")
+check("--domain painted alone succeeds", r2.returncode == 0, r2.stderr[-800:])
+check("--domain painted alone reads strokes as areas (the same mesh)",
+      stats2.get("domain", {}).get("triangles") == stats.get("domain", {}).get("triangles"), stats2.get("domain"))
+
+# --domain filled keeps fills alone: the icon fills nothing, strokes read as areas or not.
+r6 = run("mesh", icon, "-o", os.path.join(tmp.name, "filled.msh"), "--strokes", "areas", "--domain", "filled")
+check("--strokes areas --domain filled: the icon fills nothing (exit 1)", r6.returncode == 1 and "is empty" in r6.stderr,
+      r6.stderr[-500:])
+
+# Bending tighter than half the width: a cubic whose radius of curvature falls to 2.57 under a
+# stroke of width 8, circles of radius at and above half their widths (against rsvg-convert), and
+# one below (the union SVG 2 sweeps is a disc, π(r + w/2)²; cairo's stroker leaves a hole there).
+def tight_drawing(name, shapes):
+    path = os.path.join(tmp.name, name + ".svg")
+    with open(path, "w") as f:
+        f.write('<svg xmlns="http://www.w3.org/2000/svg" viewBox="-10 -10 60 40" fill="none" stroke="#000" '
+                f'stroke-linecap="round" stroke-linejoin="round">{shapes}</svg>')
+    out = os.path.join(tmp.name, name)
+    r = run("mesh", path, "-o", out + ".msh", "--stats", out + ".json", "-q", "--regions", "--domain", "painted")
+    check(f"{name}: mesh --domain painted succeeds", r.returncode == 0, r.stderr[-500:])
+    if r.returncode != 0:
+        return path, None
+    with open(out + ".json") as f:
+        return path, sum(x["area"] for x in json.load(f)["regions"])
+
+
+tight, tight_area = tight_drawing("tight", '<path d="M0 0 C 30 0 30 10 20 12" stroke-width="8"/>'
+                                           '<circle cx="38" cy="20" r="2" stroke-width="4"/>'
+                                           '<circle cx="4" cy="22" r="2" stroke-width="3"/>')
+r = subprocess.run(["rsvg-convert", "-w", "2400", "-h", "1600", tight, "-o", png], capture_output=True, text=True)
+tight_rendered = png_alpha(png).sum() * (60.0 / 2400) ** 2
+if tight_area is not None:
+    print(f"tight bends: mesh {tight_area:.4f}, rsvg-convert {tight_rendered:.4f}")
+    check("tight bends cover what rsvg-convert paints within 0.5 %",
+          abs(tight_area - tight_rendered) <= 0.005 * tight_rendered, (tight_area, tight_rendered))
+_, disc_area = tight_drawing("disc", '<circle cx="38" cy="4" r="2" stroke-width="8"/>')
+check("a circle of radius below half its width paints a disc", disc_area is not None and
+      abs(disc_area - math.pi * 6 ** 2) < 1e-6 * math.pi * 36, disc_area)
+
+# A filled and stroked element: two regions, the stroke painted over the fill's edge.
+shapes = os.path.join(examples, "overlapping-shapes.svg")
+areas_of = {}
+for strokes in ("lines", "areas"):
+    out = os.path.join(tmp.name, "shapes-" + strokes)
+    r7 = run("mesh", shapes, "-o", out + ".msh", "--stats", out + ".json", "-q", "--regions", "--strokes", strokes)
+    check(f"overlapping-shapes.svg --strokes {strokes} --regions succeeds", r7.returncode == 0, r7.stderr[-500:])
+    if r7.returncode == 0:
+        with open(out + ".json") as f:
+            areas_of[strokes] = {x["name"]: x["area"] for x in json.load(f)["regions"]}
+if len(areas_of) == 2:
+    a, l = areas_of["areas"], areas_of["lines"]
+    check("the filled and stroked rect has a fill region and a .stroke region", "rect#1" in a and "rect#1.stroke" in a, a)
+    check("the stroke covers the edge of the fill", a.get("rect#1", 0) < l.get("rect#1", 0), (a, l))
+    check("a stroke without fill is a .stroke region alone", "ellipse#3.stroke" in a and "ellipse#3" not in a, a)
+
+# --- the default is unchanged --------------------------------------------------------------------
+r3, plain, _ = mesh("plain", "--regions")
+r4, lines, stats4 = mesh("lines", "--regions", "--strokes", "lines")
+check("--strokes lines and no option both succeed", r3.returncode == 0 and r4.returncode == 0, r3.stderr + r4.stderr)
+with open(plain + ".msh", "rb") as a, open(lines + ".msh", "rb") as b:
+    check("--strokes lines writes the same bytes as the default", a.read() == b.read())
+check("--strokes lines has no stroke region", not any(x["name"].endswith(".stroke") for x in stats4.get("regions", [])),
+      stats4.get("regions"))
+
+r5 = run("mesh", icon, "-o", os.path.join(tmp.name, "bad.msh"), "--strokes", "wide")
+check("--strokes refuses another value", r5.returncode == 2, r5.stderr)
+
+finish()
