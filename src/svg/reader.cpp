@@ -18,11 +18,13 @@
 #include "svg/drawing_size.hpp"
 #include "svg/entities.hpp"
 #include "svg/error.hpp"
+#include "svg/fonts.hpp"
 #include "svg/numbers.hpp"
 #include "svg/paint.hpp"
 #include "svg/path_data.hpp"
 #include "svg/shapes.hpp"
 #include "svg/style.hpp"
+#include "svg/text.hpp"
 #include "svg/transform.hpp"
 
 namespace curvemesh::svg {
@@ -42,6 +44,8 @@ struct Context {
   bool visible = true;
   double viewport_width = 100, viewport_height = 100;  // for percentage lengths
   int depth = 0;
+  TextStyle text;                       // font properties, text-anchor, xml:space
+  double parent_font_size = 16;         // what em and % in this element's font-size refer to
 };
 
 // Bytes of malformed UTF-8 replaced so far, and the line of the first.
@@ -146,6 +150,7 @@ class Reader {
   void number_sources(pugi::xml_node root);
   std::string_view local_name(pugi::xml_node node) const;  // "" for elements of other namespaces
   std::string_view text_of(pugi::xml_node node, const char* name) const;
+  void count_read(pugi::xml_node node, std::size_t characters) const;  // against max_attribute_text
   std::string attr(pugi::xml_node node, const char* name) const { return std::string(text_of(node, name)); }
   bool has_attr(pugi::xml_node node, const char* name) const { return !node.attribute(name).empty(); }
   std::string href(pugi::xml_node node) const;
@@ -173,6 +178,9 @@ class Reader {
   double length(pugi::xml_node node, const char* name, Axis axis, const Context& ctx, double fallback) const;
   void draw_shape(pugi::xml_node node, std::string_view tag, const Context& ctx);
   void emit(pugi::xml_node node, std::string_view tag, const std::vector<Subpath>& subpaths, const Context& ctx);
+  // <text>: its glyphs' outlines, emitted as each tspan's shapes (svg/text.hpp).
+  void draw_text(pugi::xml_node node, const Context& ctx);
+  void collect_text(pugi::xml_node node, const Context& ctx, TextContent& content, std::vector<Context>& contexts);
   // Once the drawing's size is known: a subpath to an isolated point when all of it lies within
   // `tolerance` (ε_m·d) of one point (paper §4), else to the soup's curves.
   void add_to_soup(PendingSubpath& sp, double tolerance);
@@ -201,6 +209,7 @@ class Reader {
 
   std::vector<PendingSubpath> pending_;
   int arcs_ = 0;  // arcs numbered in the soup so far (SoupCurve::arc)
+  Fonts fonts_;   // set up when the first text is drawn
   FeatureSoup soup_;
 };
 
@@ -234,11 +243,15 @@ std::string_view Reader::local_name(pugi::xml_node node) const {
 // long attribute so multiplied would keep the reader busy for hours.
 std::string_view Reader::text_of(pugi::xml_node node, const char* name) const {
   const std::string_view value = node.attribute(name).value();
-  attribute_text_ += value.size();
+  count_read(node, value.size());
+  return value;
+}
+
+void Reader::count_read(pugi::xml_node node, std::size_t characters) const {
+  attribute_text_ += characters;
   if (attribute_text_ > options_.max_attribute_text)
     fail(node, "the attributes read amount to more than " + std::to_string(options_.max_attribute_text) +
                    " characters, each <use> instance reading its element's again (a limit of the reader)");
-  return value;
 }
 
 std::string Reader::href(pugi::xml_node node) const {
@@ -321,7 +334,12 @@ void Reader::prepare_node(pugi::xml_node node, TextRepairs& repairs) {
     // Of all text, the reader reads style sheets only (any prefix: the namespaces are not known yet).
     const std::string_view parent = node.parent().name();
     const bool sheet = parent == "style" || parent.ends_with(":style");
-    std::optional<std::string> text = sheet ? expanded(node.value()) : std::nullopt;
+    // ... and the characters of text (SVG 1.1 §10.3: the character data of text and tspan).
+    const auto drawn = [&](std::string_view tag) {
+      return parent == tag || (parent.ends_with(tag) && parent[parent.size() - tag.size() - 1] == ':');
+    };
+    const bool characters = drawn("text") || drawn("tspan") || drawn("a");
+    std::optional<std::string> text = sheet || characters ? expanded(node.value()) : std::nullopt;
     if (auto fixed = repaired(text ? *text : std::string_view(node.value()), node, repairs))
       text = std::move(fixed);
     if (text) node.set_value(text->c_str());
@@ -402,6 +420,7 @@ bool Reader::apply_style(pugi::xml_node node, std::string_view tag, Context& ctx
         if (!f(name, value)) return false;
     return for_each_declaration(text_of(node, "style"), f);
   };
+  ctx.parent_font_size = ctx.text.size;
   // `color` first: currentColor in fill/stroke refers to this element's computed colour.
   visit([&](std::string_view name, std::string_view value) {
     if (name == "color")
@@ -440,6 +459,8 @@ bool Reader::apply_declaration(pugi::xml_node node, std::string_view name, std::
     const std::string_view v = trim_svg_whitespace(value);
     if (v == "hidden" || v == "collapse") ctx.visible = false;
     if (v == "visible") ctx.visible = true;
+  } else {
+    apply_text_declaration(name, value, ctx.parent_font_size, ctx.text);
   }
   return true;
 }
@@ -580,7 +601,10 @@ void Reader::walk(pugi::xml_node node, Context ctx) {
     if (!ctx.visible) return;
     apply_transform(node, ctx);
     draw_shape(node, tag, ctx);
-  } else if (tag == "text" || tag == "image" || tag == "foreignObject") {
+  } else if (tag == "text") {
+    apply_transform(node, ctx);
+    draw_text(node, ctx);
+  } else if (tag == "image" || tag == "foreignObject") {
     ++skipped_kinds_[std::string(tag)];
   }
   // Everything else draws nothing by itself: defs, symbol, clipPath, mask, pattern, marker,
@@ -800,6 +824,76 @@ void Reader::emit(pugi::xml_node node, std::string_view tag, const std::vector<S
     if (curve_count_ > options_.max_curves) too_many_curves(node);
     pending_.push_back(std::move(out));
   }
+}
+
+// The element's characters and those of its tspans (and <a>s), each with its style; textPath and
+// the deprecated tref are skipped. Recursion as deep as the document, which index_document bounds.
+void Reader::collect_text(pugi::xml_node node, const Context& ctx, TextContent& content,
+                          std::vector<Context>& contexts) {
+  const int index = static_cast<int>(content.elements.size());
+  TextElement element{ctx.text, {}, {}, {}, {}, content.pieces.size(), 0, ctx.visible};
+  if (const std::string_view space = node.attribute("xml:space").value(); space == "preserve" || space == "default")
+    element.style.preserve_space = space == "preserve";
+  const auto list = [&](const char* name, double percent_of) {
+    return has_attr(node, name) ? parse_length_list(text_of(node, name), percent_of, ctx.text.size)
+                                : std::vector<double>{};
+  };
+  element.x = list("x", ctx.viewport_width);
+  element.y = list("y", ctx.viewport_height);
+  element.dx = list("dx", ctx.viewport_width);
+  element.dy = list("dy", ctx.viewport_height);
+  Context own = ctx;  // what its children inherit, xml:space too
+  own.text.preserve_space = element.style.preserve_space;
+  content.elements.push_back(std::move(element));
+  contexts.push_back(own);
+  // Whether an element is among the siblings before and after each piece of character data.
+  pugi::xml_node last_element;
+  for (const pugi::xml_node child : node.children())
+    if (child.type() == pugi::node_element) last_element = child;
+  bool element_before = false, element_after = bool(last_element);
+  for (const pugi::xml_node child : node.children()) {
+    if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) {
+      // Counted with the attributes: a <use> of a long text reads it again.
+      const std::string_view data = child.value();
+      count_read(node, data.size());
+      content.pieces.push_back({data, index, element_before, element_after});
+      continue;
+    }
+    if (child.type() != pugi::node_element) continue;
+    element_before = true;
+    if (child == last_element) element_after = false;
+    const std::string_view tag = local_name(child);
+    if (tag.empty()) continue;
+    if (tag == "textPath" || tag == "tref") {
+      ++skipped_kinds_[std::string(tag)];
+      continue;
+    }
+    if (tag != "tspan" && tag != "a") continue;  // title, desc, metadata: not text
+    if (++instantiated_ > options_.max_elements)
+      fail(child, "the document has more than " + std::to_string(options_.max_elements) +
+                      " elements, each <use> instance counted (--max-elements raises the limit)");
+    Context inner = own;
+    if (!apply_style(child, tag, inner)) continue;  // display:none: neither drawn nor laid out
+    apply_side_colors(child, inner);
+    collect_text(child, inner, content, contexts);
+  }
+  content.elements[index].end_piece = content.pieces.size();
+}
+
+void Reader::draw_text(pugi::xml_node node, const Context& ctx) {
+  TextContent content;
+  std::vector<Context> contexts;
+  collect_text(node, ctx, content, contexts);
+  std::vector<std::string> warnings;
+  std::vector<GlyphRun> runs;
+  try {
+    runs = layout_text(fonts_, content, options_.max_curves - curve_count_, warnings);
+  } catch (const TooManyPieces&) {
+    too_many_curves(node);
+  }
+  for (const std::string& w : warnings) warn_once("text:" + w, w);
+  // The text is one source element; each tspan's glyphs are drawn with the tspan's paint.
+  for (const GlyphRun& run : runs) emit(node, "text", run.subpaths, contexts[run.element]);
 }
 
 // ---------------------------------------------------------------------------------------------
