@@ -319,9 +319,12 @@ def test_injected_style_is_honoured(tmp_path, name, body, probes):
     assert [colour_at(untreated, box, p) for p, _ in probes] != [c for _, c in probes]
 
 
-def test_text_is_hidden(tmp_path):
+def test_text_is_painted_and_images_hidden(tmp_path):
+    # Text is meshed as its glyphs, so the copy paints it (without its stroke); images stay hidden.
     document = (f'<svg xmlns="{SVG_NS}" width="100" height="100"><text x="5" y="80" font-size="70" '
-                'fill="#0000ff">W<tspan style="display:inline">W</tspan></text></svg>')
+                'fill="#0000ff" stroke="#ff0000" stroke-width="6">W</text>'
+                '<foreignObject width="100" height="100"><div xmlns="http://www.w3.org/1999/xhtml" '
+                'style="background:#00ff00;width:100px;height:100px"/></foreignObject></svg>')
     need_rsvg()
     raw = tmp_path / "raw.svg"
     raw.write_text(document)
@@ -329,7 +332,9 @@ def test_text_is_hidden(tmp_path):
     if not (untreated[..., 3] > 0).any():
         pytest.skip("rsvg-convert draws no text here (no fonts)")
     image = render_text(tmp_path, document, (0, 0, 100, 100), (100, 100))
-    assert (image[..., 3] == 0).all()
+    opaque = image[image[..., 3] == 255]
+    assert len(opaque) > 0 and (opaque[:, :3] == [0, 0, 255]).all(axis=1).any()
+    assert not (opaque[:, :3] == [255, 0, 0]).all(axis=1).any()
 
 
 def test_namespaced_and_doctype_documents_render(tmp_path):
