@@ -45,7 +45,7 @@ struct Context {
   double viewport_width = 100, viewport_height = 100;  // for percentage lengths
   int depth = 0;
   TextStyle text;                       // font properties, text-anchor, xml:space
-  double parent_font_size = 16;         // what em and % in this element's font-size refer to
+  double parent_font_size = TextStyle{}.size;  // what em and % in this element's font-size refer to
 };
 
 // Bytes of malformed UTF-8 replaced so far, and the line of the first.
@@ -221,8 +221,10 @@ void Reader::parse_document() {
   for (const auto& name : entities_.external())
     warn_once("external-entity:" + name, "external entity '" + name + "' is not loaded");
 
-  const pugi::xml_parse_result result =
-      doc_.load_buffer(text_.data(), text_.size(), pugi::parse_default, pugi::encoding_auto);
+  // White space between the tspans of a text is text (pugixml drops white-space-only character
+  // data unless asked to keep it): "<tspan>0</tspan> <tspan>1</tspan>" draws "0 1".
+  const pugi::xml_parse_result result = doc_.load_buffer(text_.data(), text_.size(),
+                                                         pugi::parse_default | pugi::parse_ws_pcdata, pugi::encoding_auto);
   if (!result) {
     const std::size_t offset = result.offset < 0 ? 0 : static_cast<std::size_t>(result.offset);
     throw InputError(std::string("not well-formed XML: ") + result.description(),

@@ -128,7 +128,7 @@ std::vector<std::string> font_families(std::string_view value) {
 bool apply_font_shorthand(std::string_view value, double parent_size, TextStyle& style) {
   TextStyle out = style;
   out.font = TextStyle{}.font;
-  out.size = 16;
+  out.size = TextStyle{}.size;
   std::size_t pos = 0;
   const auto next_word = [&]() {
     while (pos < value.size() && is_svg_whitespace(value[pos])) ++pos;
@@ -321,12 +321,14 @@ void place_run(Fonts& fonts, const TextStyle& style, int element, const std::u32
                std::size_t chunk, Vec2& pen, std::vector<PlacedGlyph>& placed, Warnings& warnings) {
   if (!(style.size > 0)) return;  // CSS: a font-size of 0 draws nothing
   std::string problem;
-  const FontMatch font = fonts.match(style.font, problem);
+  FontRequest request = style.font;
+  if (request.families.empty()) request.families = {kDefaultFontFamily};
+  const FontMatch font = fonts.match(request, problem);
   if (!problem.empty()) {
     warnings.add("text not drawn: " + problem);
     return;
   }
-  if (!font.named)
+  if (!font.named && !style.font.families.empty())
     warnings.add("font-family '" + family_list(style.font.families) + "' is not installed: drawn in " +
                  font.family + ", fontconfig's substitute");
   const double scale = style.size / fonts.units_per_em(font.face);

@@ -17,12 +17,17 @@ namespace curvemesh::svg {
 
 enum class TextAnchor : std::uint8_t { start, middle, end };
 
+// librsvg's initial font-family, for text that names none (fontconfig substitutes a serif face
+// where it is not installed, without a warning: the drawing asked for no family).
+inline constexpr const char* kDefaultFontFamily = "Times New Roman";
+
 // The text properties an element inherits (CSS Fonts; SVG 1.1 §10.9 text-anchor; the XML
 // attribute xml:space, §10.15).
 struct TextStyle {
-  // No family named: librsvg's initial font-family, fontconfig then chooses its face for it.
-  FontRequest font{{"Times New Roman"}, 400, FontSlant::normal};
-  double size = 16;  // font-size in user units; CSS's initial "medium"
+  FontRequest font;  // no family: kDefaultFontFamily
+  // font-size in user units. librsvg's initial value is 12, not CSS's medium (16): rsvg-convert
+  // draws text without a font-size as at font-size="12".
+  double size = 12;
   TextAnchor anchor = TextAnchor::start;
   bool preserve_space = false;  // xml:space="preserve"
 };

@@ -145,6 +145,14 @@ TEST(Text, WhiteSpaceCollapsesUnlessPreserved) {
   const std::string font = "font-family='DejaVu Sans' x='10' y='50'";
   const FeatureSoup collapsed = read("<text " + font + ">\n   a \t  b\n </text>");
   expect_same_curves(collapsed, read("<text " + font + ">a b</text>"));
+  // Between elements a space is kept, even alone (librsvg strips a piece's leading and trailing
+  // spaces only where no element is beside it).
+  expect_same_curves(read("<text " + font + "><tspan>a</tspan>\n  <tspan>b</tspan>\n</text>"),
+                     read("<text " + font + "><tspan>a</tspan> <tspan>b</tspan></text>"));
+  const Box2 ab = read("<text " + font + "><tspan>a</tspan><tspan>b</tspan></text>").bounds();
+  const Box2 a_b = read("<text " + font + "><tspan>a</tspan> <tspan>b</tspan></text>").bounds();
+  EXPECT_GT(a_b.max.x(), ab.max.x() + 2);  // a space of DejaVu Sans at 12 is 3.8 wide
+  expect_same_curves(read("<text " + font + ">a<tspan> b</tspan></text>"), read("<text " + font + ">ab</text>"));
   const FeatureSoup preserved = read("<text xml:space='preserve' " + font + ">   a</text>");
   // Three spaces kept before the a: it starts three space advances further right.
   EXPECT_GT(preserved.bounds().min.x(), read("<text " + font + ">a</text>").bounds().min.x() + 10);
@@ -178,4 +186,14 @@ TEST(Text, CountsAgainstTheCurveLimit) {
   // A hidden text draws nothing and costs nothing.
   EXPECT_TRUE(read_svg(doc("<text visibility='hidden'>" + std::string(100, 'W') + "</text>"), o, "h.svg")
                   .curves.empty());
+}
+
+TEST(Text, DefaultsAreLibrsvgs) {
+  // librsvg draws text without a font-size at 12 user units (not CSS's 16) and without a family in
+  // its default one; neither is a reason to warn.
+  const FeatureSoup plain = read("<text y='50'>Default</text>");
+  EXPECT_TRUE(plain.warnings.empty()) << testing::PrintToString(plain.warnings);
+  expect_same_curves(plain, read("<text y='50' font-size='12'>Default</text>"));
+  const Box2 medium = read("<text y='50' font-size='medium'>Default</text>").bounds();
+  EXPECT_NEAR(medium.width(), plain.bounds().width() * 16 / 12, 1e-9);
 }
