@@ -279,8 +279,6 @@ CASES = [
     ("fill-opacity", f'<rect {GREEN} style="fill:#00ff00;fill-opacity:0.2"/>', [((50, 50), "#00ff00")]),
     ("fill-opacity inherited", f'<g fill-opacity="0.2"><rect {GREEN} fill="#00ff00"/></g>',
      [((50, 50), "#00ff00")]),
-    ("clip-path", f'<clipPath id="c"><rect width="30" height="30"/></clipPath>'
-                  f'<rect {GREEN} fill="#00ff00" clip-path="url(#c)"/>', [((50, 50), "#00ff00")]),
     ("mask", f'<mask id="k"><rect width="30" height="30" fill="white"/></mask>'
              f'<rect {GREEN} style="fill:#00ff00;mask:url(#k)"/>', [((50, 50), "#00ff00")]),
     ("filter", f'<filter id="f"><feFlood flood-color="#0000ff"/></filter><rect {GREEN} fill="#00ff00" '
@@ -317,6 +315,16 @@ def test_injected_style_is_honoured(tmp_path, name, body, probes):
     raw.write_text(document.replace('width="100" height="100"', 'width="200" height="200" viewBox="0 0 100 100"', 1))
     untreated = ra.render(str(raw), str(tmp_path / "raw.png"))
     assert [colour_at(untreated, box, p) for p, _ in probes] != [c for _, c in probes]
+
+
+def test_clip_paths_are_kept(tmp_path):
+    # The regions apply clip paths: the copy keeps them (the green square cut to 0..30).
+    document = (f'<svg xmlns="{SVG_NS}" width="100" height="100"><clipPath id="c"><rect width="30" height="30"/>'
+                f'</clipPath><rect {GREEN} fill="#00ff00" clip-path="url(#c)"/></svg>')
+    need_rsvg()
+    box = (0.0, 0.0, 100.0, 100.0)
+    image = render_text(tmp_path, document, box, (200, 200))
+    assert colour_at(image, box, (25, 25)) == "#00ff00" and colour_at(image, box, (50, 50)) == "transparent"
 
 
 def test_text_is_painted_and_images_hidden(tmp_path):
