@@ -221,8 +221,8 @@ std::vector<ShapedGlyph> Fonts::shape(int face, const std::u32string& text) {
   std::vector<ShapedGlyph> glyphs;
   glyphs.reserve(count);
   for (unsigned i = 0; i < count; ++i)
-    glyphs.push_back({info[i].codepoint, pos[i].x_advance * to_units_x, pos[i].x_offset * to_units_x,
-                      pos[i].y_offset * to_units_y});
+    glyphs.push_back({info[i].codepoint, info[i].cluster, pos[i].x_advance * to_units_x,
+                      pos[i].x_offset * to_units_x, pos[i].y_offset * to_units_y});
   hb_buffer_destroy(buffer);
   return glyphs;
 }

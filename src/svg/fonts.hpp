@@ -36,7 +36,8 @@ struct FontMatch {
 
 // One glyph of a shaped run, in font units (the em is units_per_em), y up as in the font.
 struct ShapedGlyph {
-  std::uint32_t glyph = 0;  // 0 is .notdef: the font has no glyph for the character
+  std::uint32_t glyph = 0;    // 0 is .notdef: the font has no glyph for the character
+  std::uint32_t cluster = 0;  // the index of the first character it draws
   double x_advance = 0, x_offset = 0, y_offset = 0;
 };
 

@@ -19,9 +19,10 @@ using Declarations = std::vector<std::pair<std::string, std::string>>;
 
 // The properties the reader takes from presentation attributes and CSS; a style sheet keeps no
 // other.
-inline constexpr std::array<const char*, 15> kStyleProperties = {
+inline constexpr std::array<const char*, 16> kStyleProperties = {
     "fill", "stroke",      "color",     "display",     "visibility", "fill-rule",   "clip-path", "clip-rule",
-    "mask", "font",        "font-family", "font-size", "font-weight", "font-style", "text-anchor"};
+    "mask", "font",        "font-family", "font-size", "font-weight", "font-style", "text-anchor",
+    "letter-spacing"};
 
 // Fixed limits of the reader on the style sheets of one document. Drawings have a few hundred
 // rules (in openclipart at most 388 selectors and 749 declarations); a small hostile sheet could

@@ -157,6 +157,26 @@ bool apply_font_shorthand(std::string_view value, double parent_size, TextStyle&
   return true;
 }
 
+// CSS Text 3 §8.2: letter-spacing, "normal" (0) or a length (em of the element's font-size).
+void apply_letter_spacing(std::string_view value, TextStyle& style) {
+  const std::string v = lower(trim_svg_whitespace(value));
+  std::string_view unit;
+  std::optional<double> n;
+  try {
+    n = parse_number_with_unit(v, &unit);
+  } catch (const SyntaxError&) {
+  }
+  if (v == "normal") {
+    style.letter_spacing = style.letter_spacing_em = 0;
+  } else if (n && (unit == "em" || unit == "ex")) {
+    style.letter_spacing = 0;
+    style.letter_spacing_em = unit == "em" ? *n : *n / 2;
+  } else if (const auto px = unit == "%" ? std::nullopt : length_value(v, 0, 0)) {
+    style.letter_spacing = *px;
+    style.letter_spacing_em = 0;
+  }
+}
+
 // UTF-8 (well-formed: the reader has repaired it) to code points.
 void append_code_points(std::string_view s, std::u32string& out) {
   for (std::size_t i = 0; i < s.size();) {
@@ -188,6 +208,8 @@ bool apply_text_declaration(std::string_view name, std::string_view value, doubl
     if (v == "start") style.anchor = TextAnchor::start;
     if (v == "middle") style.anchor = TextAnchor::middle;
     if (v == "end") style.anchor = TextAnchor::end;
+  } else if (name == "letter-spacing") {
+    apply_letter_spacing(value, style);
   } else if (name == "font") {
     apply_font_shorthand(value, parent_size, style);
   } else {
@@ -316,32 +338,40 @@ std::string family_list(const std::vector<std::string>& families) {
 }
 
 // Shapes one run (characters of one element, no position given after its first) and places its
-// glyphs from `pen`, which it advances.
-void place_run(Fonts& fonts, const TextStyle& style, int element, const std::u32string& run,
-               std::size_t chunk, Vec2& pen, std::vector<PlacedGlyph>& placed, Warnings& warnings) {
-  if (!(style.size > 0)) return;  // CSS: a font-size of 0 draws nothing
+// glyphs from `pen`, which it advances; returns the letter spacing added after its last character
+// (librsvg spaces letters apart, not a chunk's end from what follows: an end-anchored chunk ends
+// at its last glyph's advance).
+double place_run(Fonts& fonts, const TextStyle& style, int element, const std::u32string& run,
+                 std::size_t chunk, Vec2& pen, std::vector<PlacedGlyph>& placed, Warnings& warnings) {
+  if (!(style.size > 0)) return 0;  // CSS: a font-size of 0 draws nothing
   std::string problem;
   FontRequest request = style.font;
   if (request.families.empty()) request.families = {kDefaultFontFamily};
   const FontMatch font = fonts.match(request, problem);
   if (!problem.empty()) {
     warnings.add("text not drawn: " + problem);
-    return;
+    return 0;
   }
   if (!font.named && !style.font.families.empty())
     warnings.add("font-family '" + family_list(style.font.families) + "' is not installed: drawn in " +
                  font.family + ", fontconfig's substitute");
   const double scale = style.size / fonts.units_per_em(font.face);
+  const double spacing = style.letter_spacing + style.letter_spacing_em * style.size;
   bool missing = false;
-  for (const ShapedGlyph& g : fonts.shape(font.face, run)) {
+  const std::vector<ShapedGlyph> glyphs = fonts.shape(font.face, run);
+  for (std::size_t i = 0; i < glyphs.size(); ++i) {
+    const ShapedGlyph& g = glyphs[i];
     // Glyph offsets and the font's y axis point up; SVG's y points down.
     if (g.glyph != 0)
       placed.push_back({font.face, g.glyph, Vec2(pen.x() + g.x_offset * scale, pen.y() - g.y_offset * scale),
                         scale, element, chunk});
     missing = missing || g.glyph == 0;
     pen.x() += g.x_advance * scale;
+    if (i + 1 == glyphs.size() || glyphs[i + 1].cluster != g.cluster)
+      pen.x() += spacing;  // after a character
   }
   if (missing) warnings.add("characters that " + font.family + " has no glyph for are not drawn");
+  return glyphs.empty() ? 0 : spacing;
 }
 
 // The placed glyphs' outlines, each chunk moved by its anchor, in runs of one element.
@@ -398,9 +428,9 @@ std::vector<GlyphRun> layout_text(Fonts& fonts, const TextContent& content, std:
     // An absolute position starts a new chunk, anchored by its first character's text-anchor.
     if (chunks.empty() || at.x[i] || at.y[i]) chunks.push_back({pen.x(), pen.x(), style.anchor});
     pen += Vec2(at.dx[i], at.dy[i]);
-    place_run(fonts, style, chars.element[i], chars.text.substr(i, j - i), chunks.size() - 1, pen, placed,
-              warnings);
-    chunks.back().end = pen.x();
+    const double trailing = place_run(fonts, style, chars.element[i], chars.text.substr(i, j - i),
+                                      chunks.size() - 1, pen, placed, warnings);
+    chunks.back().end = pen.x() - trailing;
   }
   std::vector<char> drawn;
   for (const TextElement& e : content.elements) drawn.push_back(e.drawn);

@@ -2,8 +2,9 @@
 // <text> and <tspan> as their glyphs' outlines (SVG 1.1 §10), laid out as librsvg lays them out:
 // the font properties inherited through the cascade, the character data with white space
 // collapsed (§10.15), absolute and relative positions per character (x, y, dx, dy, §10.4), text
-// chunks anchored by text-anchor (§10.9.1), each run of characters shaped by HarfBuzz in the face
-// fontconfig chooses (svg/fonts.hpp). Horizontal text only; no textPath, rotate or textLength.
+// chunks anchored by text-anchor (§10.9.1), letter-spacing, each run of characters shaped by
+// HarfBuzz in the face fontconfig chooses (svg/fonts.hpp). Horizontal text only; no textPath,
+// rotate, textLength or word-spacing.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -29,6 +30,8 @@ struct TextStyle {
   // draws text without a font-size as at font-size="12".
   double size = 12;
   TextAnchor anchor = TextAnchor::start;
+  // letter-spacing (CSS Text 3 §8.2): letter_spacing + letter_spacing_em · size between characters.
+  double letter_spacing = 0, letter_spacing_em = 0;
   bool preserve_space = false;  // xml:space="preserve"
 };
 

@@ -152,7 +152,8 @@ TEST(Text, WhiteSpaceCollapsesUnlessPreserved) {
   const Box2 ab = read("<text " + font + "><tspan>a</tspan><tspan>b</tspan></text>").bounds();
   const Box2 a_b = read("<text " + font + "><tspan>a</tspan> <tspan>b</tspan></text>").bounds();
   EXPECT_GT(a_b.max.x(), ab.max.x() + 2);  // a space of DejaVu Sans at 12 is 3.8 wide
-  expect_same_curves(read("<text " + font + ">a<tspan> b</tspan></text>"), read("<text " + font + ">ab</text>"));
+  expect_same_curves(read("<text " + font + ">a<tspan> b</tspan></text>"),
+                     read("<text " + font + ">ab</text>"));
   const FeatureSoup preserved = read("<text xml:space='preserve' " + font + ">   a</text>");
   // Three spaces kept before the a: it starts three space advances further right.
   EXPECT_GT(preserved.bounds().min.x(), read("<text " + font + ">a</text>").bounds().min.x() + 10);
@@ -196,4 +197,20 @@ TEST(Text, DefaultsAreLibrsvgs) {
   expect_same_curves(plain, read("<text y='50' font-size='12'>Default</text>"));
   const Box2 medium = read("<text y='50' font-size='medium'>Default</text>").bounds();
   EXPECT_NEAR(medium.width(), plain.bounds().width() * 16 / 12, 1e-9);
+}
+
+TEST(Text, LetterSpacingBetweenCharacters) {
+  const std::string font = "font-family='DejaVu Sans' font-size='20' x='100' y='50'";
+  const Box2 plain = read("<text " + font + ">HHH</text>").bounds();
+  const Box2 spaced = read("<text " + font + " letter-spacing='10'>HHH</text>").bounds();
+  const Box2 em = read("<text " + font + " style='letter-spacing:0.5em'>HHH</text>").bounds();
+  // Two gaps between three letters, none before the first.
+  EXPECT_NEAR(spaced.min.x(), plain.min.x(), 1e-9);
+  EXPECT_NEAR(spaced.max.x(), plain.max.x() + 20, 1e-9);
+  EXPECT_NEAR(em.max.x(), spaced.max.x(), 1e-9);
+  // None after the last either: an end-anchored chunk ends where it would without spacing.
+  const Box2 end = read("<text " + font + " text-anchor='end' letter-spacing='10'>HHH</text>").bounds();
+  const Box2 end_plain = read("<text " + font + " text-anchor='end'>HHH</text>").bounds();
+  EXPECT_NEAR(end.max.x(), end_plain.max.x(), 1e-9);
+  EXPECT_NEAR(end.min.x(), end_plain.min.x() - 20, 1e-9);
 }
