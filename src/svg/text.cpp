@@ -177,17 +177,15 @@ void apply_letter_spacing(std::string_view value, TextStyle& style) {
   }
 }
 
-// UTF-8 (well-formed: the reader has repaired it) to code points.
-void append_code_points(std::string_view s, std::u32string& out) {
-  for (std::size_t i = 0; i < s.size();) {
-    const unsigned char b = static_cast<unsigned char>(s[i]);
-    const int n = b < 0x80 ? 1 : b < 0xE0 ? 2 : b < 0xF0 ? 3 : 4;
-    char32_t c = n == 1 ? b : n == 2 ? (b & 0x1F) : n == 3 ? (b & 0x0F) : (b & 0x07);
-    for (int k = 1; k < n && i + k < s.size(); ++k)
-      c = (c << 6) | (static_cast<unsigned char>(s[i + k]) & 0x3F);
-    out.push_back(c);
-    i += n;
-  }
+// The code point of UTF-8 (well-formed: the reader has repaired it) at `i`, which it moves on.
+char32_t next_code_point(std::string_view s, std::size_t& i) {
+  const unsigned char b = static_cast<unsigned char>(s[i]);
+  const int n = b < 0x80 ? 1 : b < 0xE0 ? 2 : b < 0xF0 ? 3 : 4;
+  char32_t c = n == 1 ? b : n == 2 ? (b & 0x1F) : n == 3 ? (b & 0x0F) : (b & 0x07);
+  for (int k = 1; k < n && i + k < s.size(); ++k)
+    c = (c << 6) | (static_cast<unsigned char>(s[i + k]) & 0x3F);
+  i += n;
+  return c;
 }
 
 }  // namespace
@@ -243,18 +241,19 @@ struct Characters {
   std::vector<std::size_t> piece_start;
 };
 
-Characters collect_characters(const TextContent& content) {
+// Past `max_characters` (kept after white space is handled), throws TooManyPieces: the memory
+// taken per character (about 100 bytes through shaping) stays bounded whatever the input.
+Characters collect_characters(const TextContent& content, std::size_t max_characters) {
   Characters c;
-  std::u32string decoded;
   const auto preserved = [&](int element) { return content.elements[element].style.preserve_space; };
   std::u32string kept;
   for (const TextPiece& piece : content.pieces) {
     c.piece_start.push_back(c.text.size());
-    decoded.clear();
-    append_code_points(piece.data, decoded);
     kept.clear();
     const bool preserve = preserved(piece.element);
-    for (char32_t ch : decoded) {
+    for (std::size_t i = 0; i < piece.data.size();) {
+      char32_t ch = next_code_point(piece.data, i);
+      if (c.text.size() + kept.size() >= max_characters) throw TooManyPieces();
       // xml:space="preserve": newlines and tabs become spaces, and every space is kept.
       // "default": newlines removed, tabs become spaces, and runs of spaces one space.
       if ((ch == '\n' || ch == '\r') && !preserve) continue;
@@ -412,7 +411,9 @@ std::vector<GlyphRun> outlines_of(Fonts& fonts, const std::vector<PlacedGlyph>& 
 
 std::vector<GlyphRun> layout_text(Fonts& fonts, const TextContent& content, std::size_t max_curves,
                                   std::vector<std::string>& warning_list) {
-  const Characters chars = collect_characters(content);
+  // A character drawn is a curve at least (white space aside, which costs no more): the text is
+  // refused at as many characters as curves are left.
+  const Characters chars = collect_characters(content, max_curves);
   const CharacterPositions at = positions_of(content, chars);
   Warnings warnings(warning_list);
   std::vector<PlacedGlyph> placed;

@@ -184,9 +184,19 @@ TEST(Text, CountsAgainstTheCurveLimit) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("more than 40 curves"), std::string::npos) << e.what();
   }
-  // A hidden text draws nothing and costs nothing.
-  EXPECT_TRUE(read_svg(doc("<text visibility='hidden'>" + std::string(100, 'W') + "</text>"), o, "h.svg")
+  // A hidden text draws no curve: 30 W would be about 400 curves.
+  EXPECT_TRUE(read_svg(doc("<text visibility='hidden'>" + std::string(30, 'W') + "</text>"), o, "h.svg")
                   .curves.empty());
+  // Every character counts as a curve at least, white space too where it is kept: the memory a
+  // text takes stays bounded by the limit.
+  EXPECT_NO_THROW(
+      read_svg(doc("<text xml:space='preserve'>" + std::string(39, ' ') + "</text>"), o, "s.svg"));
+  try {
+    read_svg(doc("<text xml:space='preserve'>" + std::string(100, ' ') + "</text>"), o, "s.svg");
+    FAIL() << "100 characters read under a limit of 40 curves";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("more than 40 curves"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Text, DefaultsAreLibrsvgs) {
