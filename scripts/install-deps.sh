@@ -9,6 +9,8 @@ packages=(
   # libraries
   libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libpugixml-dev libcli11-dev nlohmann-json3-dev libtbb-dev libsuitesparse-dev libpng-dev libhdf5-dev zlib1g-dev
+  # text as glyphs: fontconfig chooses a font, FreeType reads it, HarfBuzz shapes; a font to draw with
+  libharfbuzz-dev libfreetype-dev libfontconfig-dev fonts-dejavu-core
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # fuzzing (libFuzzer with ASan/UBSan)

@@ -121,8 +121,11 @@ std::vector<ParameterOption> run_options() {
        "tag the triangles by what the drawing paints on them, as a browser does (fill, fill-rule, transforms, "
        "<use>, CSS; the topmost filled element wins): one physical surface per visible element, named by its id "
        "(else TAG#INDEX, its index in the document), and 'background' where nothing is filled, with the same ids "
-       "whatever --domain keeps; --stats lists them with fill, triangles and area; --svg fills each triangle with its element's colour. Opacity, gradients and "
-       "patterns do not change what covers what; clip paths and masks are ignored (with a warning). The line "
+       "whatever --domain keeps; --stats lists them with fill, triangles and area; --svg fills each triangle with its element's colour. Text covers "
+       "what its glyphs do. Opacity, gradients and "
+       "patterns do not change what covers what; a clip path cuts its element's fill to its inside (its outline "
+       "becomes a feature), while masks (not a geometric cut) and clip paths in objectBoundingBox units are ignored "
+       "(with a warning). The line "
        "closing an open filled subpath becomes a feature",
        CURVEMESH_FIELD(regions, bool)},
       {"--domain", "--domain", "domain", "", "run", Kind::choice, 0, 3, false, 0,

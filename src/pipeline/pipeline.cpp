@@ -173,12 +173,13 @@ void paint(Result& r, const std::function<void(const std::string&)>& warn) {
     if (r.soup.fills.empty()) warn("no element is filled (fill none, or strokes only): every face is background");
     if (r.soup.clipped_elements > 0)
       warn(std::to_string(r.soup.clipped_elements) + " element" + (r.soup.clipped_elements == 1 ? " has" : "s have") +
-           " a clip path or mask, which the regions ignore: their fills count unclipped");
+           " a mask, or a clip path the regions cannot apply (objectBoundingBox units, text in it): their "
+           "fills count unmasked, unclipped");
     regions::ClassifyOptions c;
     c.clearance = r.resolved.features.epsilon;
     c.resolution = 1e-10 * r.resolved.d;
     try {
-      r.classification = regions::classify(whole, r.soup.fills, c);
+      r.classification = regions::classify(whole, r.soup.fills, c, r.soup.clips);
     } catch (const regions::Undecided& e) {
       const svg::SourceElement& s = r.soup.sources.at(r.soup.fills.at(e.layer).source);
       throw internal(r.name + ": cannot decide on which side of the outline of <" + s.tag +

@@ -114,7 +114,7 @@ bool covers(const Outline& outline, const svg::FillLayer& layer, const FaceSampl
 }  // namespace
 
 Classification classify(const io::HighOrderMesh& mesh, const std::vector<svg::FillLayer>& fills,
-                        const ClassifyOptions& options) {
+                        const ClassifyOptions& options, const std::vector<svg::ClipPath>& clips) {
   Classification c;
   c.faces = find_faces(mesh);
   const int face_count = c.faces.count();
@@ -139,6 +139,15 @@ Classification classify(const io::HighOrderMesh& mesh, const std::vector<svg::Fi
   std::vector<Outline> outlines;
   outlines.reserve(fills.size());
   for (const svg::FillLayer& layer : fills) outlines.emplace_back(layer);
+  std::vector<std::vector<Outline>> clip_outlines(clips.size());
+  for (std::size_t k = 0; k < clips.size(); ++k)
+    for (const svg::FillLayer& shape : clips[k].shapes) clip_outlines[k].emplace_back(shape);
+  // SVG 1.1 §14.3.5: what a clip path lets through is the union of its children's insides.
+  const auto in_clip = [&](int k, int l, int f) {
+    for (std::size_t s = 0; s < clips.at(k).shapes.size(); ++s)
+      if (covers(clip_outlines[k][s], clips[k].shapes[s], samples[f], options, l, f)) return true;
+    return false;
+  };
   c.visible.assign(face_count, -1);
   c.filled.assign(face_count, -1);
   for (int f = 0; f < face_count; ++f) {
@@ -146,7 +155,9 @@ Classification classify(const io::HighOrderMesh& mesh, const std::vector<svg::Fi
     // under a stroke, go on to the first fill that does).
     for (int l = static_cast<int>(fills.size()) - 1; l >= 0; --l) {
       if (c.visible[f] >= 0 && fills[l].stroke) continue;
-      if (covers(outlines[l], fills[l], samples[f], options, l, f)) {
+      const auto& layer_clips = fills[l].clips;
+      if (covers(outlines[l], fills[l], samples[f], options, l, f) &&
+          std::all_of(layer_clips.begin(), layer_clips.end(), [&](int k) { return in_clip(k, l, f); })) {
         if (c.visible[f] < 0) c.visible[f] = l;
         if (!fills[l].stroke) {
           c.filled[f] = l;

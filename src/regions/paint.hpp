@@ -37,9 +37,11 @@ class Undecided : public std::runtime_error {
   int layer, face;
 };
 
-// The faces of `mesh` (the whole box, linear or curved) and the visible fill layer of each.
+// The faces of `mesh` (the whole box, linear or curved) and the visible fill layer of each. A
+// layer covers a face inside its outline and inside each of its clip paths (`clips`, the soup's,
+// which its FillLayer::clips index): inside one of a clip path's shapes.
 Classification classify(const io::HighOrderMesh& mesh, const std::vector<svg::FillLayer>& fills,
-                        const ClassifyOptions& options);
+                        const ClassifyOptions& options, const std::vector<svg::ClipPath>& clips = {});
 
 // A part of the mesh's triangles tagged by what is painted on them.
 struct Region {

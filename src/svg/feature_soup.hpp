@@ -70,6 +70,16 @@ struct FillLayer {
   std::vector<std::vector<CubicBezier>> subpaths;  // each a closed loop
   Box2 bounds;                                     // of the control points of every subpath
   bool stroke = false;                             // the area of the element's stroke
+  // The clip paths the element is drawn through (indices into FeatureSoup::clips, its own and its
+  // ancestors'): the painted set is the shape's inside that is inside every one of them.
+  std::vector<int> clips = {};
+};
+
+// A <clipPath> as one element uses it (SVG 1.1 §14.3.5): the union of its children's insides,
+// each child's outline closed as a fill closes it and decided by its own clip-rule, in the root's
+// user space (through the referencing element's transform and the clipPath's own).
+struct ClipPath {
+  std::vector<FillLayer> shapes;  // `fill` unused; `rule` the child's clip-rule
 };
 
 struct SoupPoint {
@@ -82,9 +92,12 @@ struct FeatureSoup {
   std::vector<SoupPoint> points;
   std::vector<SourceElement> sources;
   std::vector<std::string> warnings;
-  // The filled shapes in paint order (what regions/ classifies the mesh's faces by), and how many
-  // drawn elements have a clip path or mask, which the fills do not apply.
+  // The filled shapes in paint order (what regions/ classifies the mesh's faces by), the clip
+  // paths they refer to, and how many drawn elements have a mask or a clip path that the fills do
+  // not apply (a mask is not a geometric cut; clipPathUnits="objectBoundingBox" is not read, nor
+  // a clipPath holding anything but shapes and <use>s of shapes).
   std::vector<FillLayer> fills;
+  std::vector<ClipPath> clips;
   int clipped_elements = 0;
 
   // The root's canvas in user units: its viewBox, else (0, 0) to its width and height (100 when

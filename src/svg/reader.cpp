@@ -18,12 +18,14 @@
 #include "svg/drawing_size.hpp"
 #include "svg/entities.hpp"
 #include "svg/error.hpp"
+#include "svg/fonts.hpp"
 #include "svg/numbers.hpp"
 #include "svg/paint.hpp"
 #include "svg/path_data.hpp"
 #include "svg/shapes.hpp"
 #include "svg/stroke.hpp"
 #include "svg/style.hpp"
+#include "svg/text.hpp"
 #include "svg/transform.hpp"
 
 namespace curvemesh::svg {
@@ -44,6 +46,11 @@ struct Context {
   bool visible = true;
   double viewport_width = 100, viewport_height = 100;  // for percentage lengths
   int depth = 0;
+  TextStyle text;                       // font properties, text-anchor, xml:space
+  double parent_font_size = TextStyle{}.size;  // what em and % in this element's font-size refer to
+  FillRule clip_rule = FillRule::nonzero;
+  std::string clip_path;                // this element's clip-path (not inherited), as declared
+  std::vector<int> clips;               // FeatureSoup::clips it and its ancestors are drawn through
 };
 
 // Bytes of malformed UTF-8 replaced so far, and the line of the first.
@@ -148,6 +155,7 @@ class Reader {
   void number_sources(pugi::xml_node root);
   std::string_view local_name(pugi::xml_node node) const;  // "" for elements of other namespaces
   std::string_view text_of(pugi::xml_node node, const char* name) const;
+  void count_read(pugi::xml_node node, std::size_t characters) const;  // against max_attribute_text
   std::string attr(pugi::xml_node node, const char* name) const { return std::string(text_of(node, name)); }
   bool has_attr(pugi::xml_node node, const char* name) const { return !node.attribute(name).empty(); }
   std::string href(pugi::xml_node node) const;
@@ -174,9 +182,20 @@ class Reader {
   // --- geometry ---
   double length(pugi::xml_node node, const char* name, Axis axis, const Context& ctx, double fallback) const;
   void draw_shape(pugi::xml_node node, std::string_view tag, const Context& ctx);
+  std::vector<Subpath> shape_subpaths(pugi::xml_node node, std::string_view tag, const Context& ctx);
+  // emit, with the element's clip paths on the fill layers it adds.
+  void emit_clipped(pugi::xml_node node, std::string_view tag, const std::vector<Subpath>& subpaths,
+                    const Context& ctx);
+  // --- clip paths ---
+  void apply_clip_path(pugi::xml_node node, Context& ctx);
+  int clip_path_of(pugi::xml_node clip, const Context& ctx);  // -1: not applied
+  bool add_clip_child(pugi::xml_node child, std::string_view tag, const Context& base, ClipPath& path);
   void emit(pugi::xml_node node, std::string_view tag, const std::vector<Subpath>& subpaths, const Context& ctx);
   // ReadOptions::strokes_as_areas: the outline of the element's stroke, a fill layer of its own.
   void emit_stroke_area(pugi::xml_node node, int source, const std::vector<Subpath>& subpaths, const Context& ctx);
+  // <text>: its glyphs' outlines, emitted as each tspan's shapes (svg/text.hpp).
+  void draw_text(pugi::xml_node node, const Context& ctx);
+  void collect_text(pugi::xml_node node, const Context& ctx, TextContent& content, std::vector<Context>& contexts);
   // Once the drawing's size is known: a subpath to an isolated point when all of it lies within
   // `tolerance` (ε_m·d) of one point (paper §4), else to the soup's curves.
   void add_to_soup(PendingSubpath& sp, double tolerance);
@@ -204,7 +223,12 @@ class Reader {
   std::unordered_set<std::string> warned_;
 
   std::vector<PendingSubpath> pending_;
+  // Clip paths made so far, by clipPath element and the map to root user space they were made
+  // under; whether one is being made (its children's own clip-paths are not applied).
+  std::map<std::pair<const void*, std::array<double, 6>>, int> clip_index_;
+  bool making_clip_ = false;
   int arcs_ = 0;  // arcs numbered in the soup so far (SoupCurve::arc)
+  Fonts fonts_;   // set up when the first text is drawn
   FeatureSoup soup_;
 };
 
@@ -216,8 +240,10 @@ void Reader::parse_document() {
   for (const auto& name : entities_.external())
     warn_once("external-entity:" + name, "external entity '" + name + "' is not loaded");
 
-  const pugi::xml_parse_result result =
-      doc_.load_buffer(text_.data(), text_.size(), pugi::parse_default, pugi::encoding_auto);
+  // White space between the tspans of a text is text (pugixml drops white-space-only character
+  // data unless asked to keep it): "<tspan>0</tspan> <tspan>1</tspan>" draws "0 1".
+  const pugi::xml_parse_result result = doc_.load_buffer(text_.data(), text_.size(),
+                                                         pugi::parse_default | pugi::parse_ws_pcdata, pugi::encoding_auto);
   if (!result) {
     const std::size_t offset = result.offset < 0 ? 0 : static_cast<std::size_t>(result.offset);
     throw InputError(std::string("not well-formed XML: ") + result.description(),
@@ -238,11 +264,15 @@ std::string_view Reader::local_name(pugi::xml_node node) const {
 // long attribute so multiplied would keep the reader busy for hours.
 std::string_view Reader::text_of(pugi::xml_node node, const char* name) const {
   const std::string_view value = node.attribute(name).value();
-  attribute_text_ += value.size();
+  count_read(node, value.size());
+  return value;
+}
+
+void Reader::count_read(pugi::xml_node node, std::size_t characters) const {
+  attribute_text_ += characters;
   if (attribute_text_ > options_.max_attribute_text)
     fail(node, "the attributes read amount to more than " + std::to_string(options_.max_attribute_text) +
                    " characters, each <use> instance reading its element's again (a limit of the reader)");
-  return value;
 }
 
 std::string Reader::href(pugi::xml_node node) const {
@@ -325,7 +355,12 @@ void Reader::prepare_node(pugi::xml_node node, TextRepairs& repairs) {
     // Of all text, the reader reads style sheets only (any prefix: the namespaces are not known yet).
     const std::string_view parent = node.parent().name();
     const bool sheet = parent == "style" || parent.ends_with(":style");
-    std::optional<std::string> text = sheet ? expanded(node.value()) : std::nullopt;
+    // ... and the characters of text (SVG 1.1 §10.3: the character data of text and tspan).
+    const auto drawn = [&](std::string_view tag) {
+      return parent == tag || (parent.ends_with(tag) && parent[parent.size() - tag.size() - 1] == ':');
+    };
+    const bool characters = drawn("text") || drawn("tspan") || drawn("a");
+    std::optional<std::string> text = sheet || characters ? expanded(node.value()) : std::nullopt;
     if (auto fixed = repaired(text ? *text : std::string_view(node.value()), node, repairs))
       text = std::move(fixed);
     if (text) node.set_value(text->c_str());
@@ -407,15 +442,23 @@ bool Reader::apply_style(pugi::xml_node node, std::string_view tag, Context& ctx
         if (!f(name, value)) return false;
     return for_each_declaration(text_of(node, "style"), f);
   };
+  ctx.parent_font_size = ctx.text.size;
+  ctx.clip_path.clear();
   // `color` first: currentColor in fill/stroke refers to this element's computed colour.
   visit([&](std::string_view name, std::string_view value) {
     if (name == "color")
       if (auto c = parse_color(value)) ctx.color = *c;
     return true;
   });
-  return visit([&](std::string_view name, std::string_view value) {
-    return apply_declaration(node, name, value, ctx);
-  });
+  if (!visit([&](std::string_view name, std::string_view value) { return apply_declaration(node, name, value, ctx); }))
+    return false;
+  if (!ctx.clip_path.empty() && ctx.clip_path != "none") {
+    if (making_clip_)
+      ++soup_.clipped_elements;  // a clip of a clip's part: not applied
+    else
+      apply_clip_path(node, ctx);
+  }
+  return true;
 }
 
 // One declaration of the cascade; false when it hides the element (display: none).
@@ -435,7 +478,14 @@ bool Reader::apply_declaration(pugi::xml_node node, std::string_view name, std::
     const std::string_view v = trim_svg_whitespace(value);
     if (v == "evenodd") ctx.fill_rule = FillRule::evenodd;
     if (v == "nonzero") ctx.fill_rule = FillRule::nonzero;
-  } else if (name == "clip-path" || name == "mask") {
+  } else if (name == "clip-path") {
+    ctx.clip_path = trim_svg_whitespace(value);  // the cascade's last one is applied (apply_style)
+  } else if (name == "clip-rule") {
+    const std::string_view v = trim_svg_whitespace(value);
+    if (v == "evenodd") ctx.clip_rule = FillRule::evenodd;
+    if (v == "nonzero") ctx.clip_rule = FillRule::nonzero;
+  } else if (name == "mask") {
+    // A mask multiplies the paint by a luminance: no geometric cut to apply.
     if (trim_svg_whitespace(value) != "none") ++soup_.clipped_elements;
   } else if (name == "stroke") {
     if (auto p = paint(node, value, ctx)) ctx.stroke = *p;
@@ -448,6 +498,7 @@ bool Reader::apply_declaration(pugi::xml_node node, std::string_view name, std::
   } else {
     const double w = ctx.viewport_width, h = ctx.viewport_height;  // SVG 1.1 §7.10: percentages
     apply_stroke_declaration(name, value, std::sqrt((w * w + h * h) / 2), ctx.stroke_style);
+    apply_text_declaration(name, value, ctx.parent_font_size, ctx.text);
   }
   return true;
 }
@@ -588,7 +639,10 @@ void Reader::walk(pugi::xml_node node, Context ctx) {
     if (!ctx.visible) return;
     apply_transform(node, ctx);
     draw_shape(node, tag, ctx);
-  } else if (tag == "text" || tag == "image" || tag == "foreignObject") {
+  } else if (tag == "text") {
+    apply_transform(node, ctx);
+    draw_text(node, ctx);
+  } else if (tag == "image" || tag == "foreignObject") {
     ++skipped_kinds_[std::string(tag)];
   }
   // Everything else draws nothing by itself: defs, symbol, clipPath, mask, pattern, marker,
@@ -713,6 +767,17 @@ void Reader::too_many_curves(pugi::xml_node node) const {
 }
 
 void Reader::draw_shape(pugi::xml_node node, std::string_view tag, const Context& ctx) {
+  emit_clipped(node, tag, shape_subpaths(node, tag, ctx), ctx);
+}
+
+void Reader::emit_clipped(pugi::xml_node node, std::string_view tag, const std::vector<Subpath>& subpaths,
+                          const Context& ctx) {
+  const std::size_t before = soup_.fills.size();
+  emit(node, tag, subpaths, ctx);
+  for (std::size_t i = before; i < soup_.fills.size(); ++i) soup_.fills[i].clips = ctx.clips;
+}
+
+std::vector<Subpath> Reader::shape_subpaths(pugi::xml_node node, std::string_view tag, const Context& ctx) {
   std::vector<Subpath> subpaths;
   // What is left of the curves allowed, so that parsing stops there, before taking the memory.
   const std::size_t allowed = options_.max_curves - curve_count_;
@@ -758,7 +823,7 @@ void Reader::draw_shape(pugi::xml_node node, std::string_view tag, const Context
       too_many_curves(node);
     }
   }
-  emit(node, tag, subpaths, ctx);
+  return subpaths;
 }
 
 void Reader::emit(pugi::xml_node node, std::string_view tag, const std::vector<Subpath>& subpaths,
@@ -849,6 +914,183 @@ void Reader::emit_stroke_area(pugi::xml_node node, int source, const std::vector
     pending_.push_back(std::move(out));
   }
   if (!layer.subpaths.empty()) soup_.fills.push_back(std::move(layer));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Clip paths (SVG 1.1 §14.3.5; CSS Masking 1 §6.1)
+
+// The element's clip-path="url(#id)": the clip path made in the element's user space (its own
+// transform included: clipPathUnits="userSpaceOnUse") is added to the clips of its fills and of
+// its descendants'. A reference to no clipPath is ignored, as CSS Masking says, with a warning;
+// objectBoundingBox units are not read (counted with the masks, the pipeline warns).
+void Reader::apply_clip_path(pugi::xml_node node, Context& ctx) {
+  const std::string value = std::exchange(ctx.clip_path, {});
+  const std::optional<Paint> ref = paint(node, value, ctx);  // url(#id), read as a paint's reference
+  const auto it = ref && ref->kind == Paint::Kind::url ? ids_.find(ref->url) : ids_.end();
+  if (it == ids_.end() || local_name(it->second) != "clipPath") {
+    warn_once("bad-clip:" + value, where(node) + ": ignored clip-path=\"" + value + "\" (no such clipPath)");
+    return;
+  }
+  const pugi::xml_node clip = it->second;
+  if (trim_svg_whitespace(text_of(clip, "clipPathUnits")) == "objectBoundingBox") {
+    ++soup_.clipped_elements;
+    return;
+  }
+  Context own = ctx;
+  apply_transform(node, own);  // done again when the element is walked; a warning is given once
+  if (const int index = clip_path_of(clip, own); index >= 0)
+    ctx.clips.push_back(index);
+  else
+    ++soup_.clipped_elements;
+}
+
+// The clip path `clip` as seen through `ctx` (the referencing element's user space, and what
+// percentages refer to): each child shape's outline, with the clipPath's and its own transform,
+// closed as a fill closes it and decided by its clip-rule; its curves are features too, so that
+// the mesh follows the clip's edge. Made once per clipPath and user space.
+int Reader::clip_path_of(pugi::xml_node clip, const Context& ctx) {
+  Context base = ctx;
+  base.fill = Paint::rgb(0, 0, 0);  // a clip's shapes are filled whatever their paint (§14.3.5)
+  base.stroke = Paint{};
+  base.clips.clear();
+  apply_transform(clip, base);  // SVG 2 lets a clipPath have its own transform; librsvg applies it
+  const Affine& m = base.ctm;
+  const auto key = std::make_pair(clip.internal_object(), std::array<double, 6>{m.a, m.b, m.c, m.d, m.e, m.f});
+  if (const auto found = clip_index_.find(key); found != clip_index_.end()) return found->second;
+  making_clip_ = true;
+  ClipPath path;
+  bool applied = true;
+  // Properties inherit into the clipPath from its own ancestors (§14.3.5); here from defaults and
+  // the clipPath's own style, which is what drawings rely on.
+  if (apply_style(clip, "clipPath", base)) {
+    for (const pugi::xml_node child : clip.children()) {
+      const std::string_view tag = local_name(child);
+      if (child.type() != pugi::node_element || tag.empty()) continue;
+      if (!add_clip_child(child, tag, base, path)) {
+        // Clipping by the rest alone would hide what this child lets through: not applied at all.
+        warn_once("clip-child:" + std::string(tag), "a clipPath holding a <" + std::string(tag) +
+                                                         "> is not applied (only shapes and <use> of shapes are)");
+        applied = false;
+      }
+    }
+  }
+  making_clip_ = false;
+  const int index = applied ? static_cast<int>(soup_.clips.size()) : -1;
+  if (applied) soup_.clips.push_back(std::move(path));
+  clip_index_.emplace(key, index);
+  return index;
+}
+
+// One child of a clipPath: a shape, or a <use> of one, drawn as a filled shape (its curves become
+// features) whose fill layer is then taken for the clip. False for any other element.
+bool Reader::add_clip_child(pugi::xml_node child, std::string_view tag, const Context& base, ClipPath& path) {
+  const auto is_shape = [](std::string_view t) {
+    return t == "path" || t == "rect" || t == "circle" || t == "ellipse" || t == "line" || t == "polyline" ||
+           t == "polygon";
+  };
+  if (++instantiated_ > options_.max_elements)
+    fail(child, "the document has more than " + std::to_string(options_.max_elements) +
+                    " elements, each <use> instance counted (--max-elements raises the limit)");
+  Context c = base;
+  if (!apply_style(child, tag, c)) return true;  // display:none: no part of the clip
+  pugi::xml_node shape = child;
+  std::string_view shape_tag = tag;
+  if (tag == "use") {
+    // SVG 1.1 §14.3.5: a <use> may refer to a shape directly, placed by its transform and x, y.
+    const std::string ref = href(child);
+    const auto it = ref.size() > 1 && ref[0] == '#' ? ids_.find(std::string_view(ref).substr(1)) : ids_.end();
+    if (it == ids_.end()) return true;  // refers to nothing: draws nothing
+    shape = it->second;
+    shape_tag = local_name(shape);
+    if (!is_shape(shape_tag)) return false;
+    apply_transform(child, c);
+    c.ctm = c.ctm * Affine::translate(length(child, "x", Axis::x, c, 0), length(child, "y", Axis::y, c, 0));
+    if (!apply_style(shape, shape_tag, c)) return true;
+  } else if (!is_shape(tag)) {
+    return false;
+  }
+  if (!c.visible) return true;
+  apply_transform(shape, c);
+  c.fill = Paint::rgb(0, 0, 0);
+  c.stroke = Paint{};
+  const std::size_t before = soup_.fills.size();
+  emit(shape, shape_tag, shape_subpaths(shape, shape_tag, c), c);
+  for (std::size_t i = before; i < soup_.fills.size(); ++i) {
+    path.shapes.push_back(std::move(soup_.fills[i]));
+    path.shapes.back().rule = c.clip_rule;
+  }
+  soup_.fills.resize(before);
+  return true;
+}
+
+// The element's characters and those of its tspans (and <a>s), each with its style; textPath and
+// the deprecated tref are skipped. Recursion as deep as the document, which index_document bounds.
+void Reader::collect_text(pugi::xml_node node, const Context& ctx, TextContent& content,
+                          std::vector<Context>& contexts) {
+  const int index = static_cast<int>(content.elements.size());
+  TextElement element{ctx.text, {}, {}, {}, {}, content.pieces.size(), 0, ctx.visible};
+  if (const std::string_view space = node.attribute("xml:space").value(); space == "preserve" || space == "default")
+    element.style.preserve_space = space == "preserve";
+  const auto list = [&](const char* name, double percent_of) {
+    return has_attr(node, name) ? parse_length_list(text_of(node, name), percent_of, ctx.text.size)
+                                : std::vector<double>{};
+  };
+  element.x = list("x", ctx.viewport_width);
+  element.y = list("y", ctx.viewport_height);
+  element.dx = list("dx", ctx.viewport_width);
+  element.dy = list("dy", ctx.viewport_height);
+  Context own = ctx;  // what its children inherit, xml:space too
+  own.text.preserve_space = element.style.preserve_space;
+  content.elements.push_back(std::move(element));
+  contexts.push_back(own);
+  // Whether an element is among the siblings before and after each piece of character data.
+  pugi::xml_node last_element;
+  for (const pugi::xml_node child : node.children())
+    if (child.type() == pugi::node_element) last_element = child;
+  bool element_before = false, element_after = bool(last_element);
+  for (const pugi::xml_node child : node.children()) {
+    if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) {
+      // Counted with the attributes: a <use> of a long text reads it again.
+      const std::string_view data = child.value();
+      count_read(node, data.size());
+      content.pieces.push_back({data, index, element_before, element_after});
+      continue;
+    }
+    if (child.type() != pugi::node_element) continue;
+    element_before = true;
+    if (child == last_element) element_after = false;
+    const std::string_view tag = local_name(child);
+    if (tag.empty()) continue;
+    if (tag == "textPath" || tag == "tref") {
+      ++skipped_kinds_[std::string(tag)];
+      continue;
+    }
+    if (tag != "tspan" && tag != "a") continue;  // title, desc, metadata: not text
+    if (++instantiated_ > options_.max_elements)
+      fail(child, "the document has more than " + std::to_string(options_.max_elements) +
+                      " elements, each <use> instance counted (--max-elements raises the limit)");
+    Context inner = own;
+    if (!apply_style(child, tag, inner)) continue;  // display:none: neither drawn nor laid out
+    apply_side_colors(child, inner);
+    collect_text(child, inner, content, contexts);
+  }
+  content.elements[index].end_piece = content.pieces.size();
+}
+
+void Reader::draw_text(pugi::xml_node node, const Context& ctx) {
+  TextContent content;
+  std::vector<Context> contexts;
+  collect_text(node, ctx, content, contexts);
+  std::vector<std::string> warnings;
+  std::vector<GlyphRun> runs;
+  try {
+    runs = layout_text(fonts_, content, options_.max_curves - curve_count_, warnings);
+  } catch (const TooManyPieces&) {
+    too_many_curves(node);
+  }
+  for (const std::string& w : warnings) warn_once("text:" + w, w);
+  // The text is one source element; each tspan's glyphs are drawn with the tspan's paint.
+  for (const GlyphRun& run : runs) emit_clipped(node, "text", run.subpaths, contexts[run.element]);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -1,7 +1,8 @@
 #pragma once
 // The part of CSS that drawings use for geometry and colours: `style` attributes and simple
 // <style> sheets with type, class and id selectors (and lists of them). Other selectors are
-// ignored; the properties that matter here (fill, stroke, color, display, visibility) are plain.
+// ignored; the properties that matter here (fill, stroke, color, display, visibility, the font's) are
+// plain.
 #include <array>
 #include <cstddef>
 #include <functional>
@@ -18,10 +19,18 @@ using Declarations = std::vector<std::pair<std::string, std::string>>;
 
 // The properties the reader takes from presentation attributes and CSS; a style sheet keeps no
 // other.
-inline constexpr std::array<const char*, 15> kStyleProperties = {
-    "fill",           "stroke",           "color",          "display",           "visibility",
-    "fill-rule",      "clip-path",        "mask",           "stroke-width",      "stroke-linejoin",
-    "stroke-linecap", "stroke-miterlimit", "stroke-dasharray", "stroke-dashoffset", "vector-effect"};
+inline constexpr std::array<const char*, 23> kStyleProperties = {
+    "fill",           "stroke",            "color",            "display",           "visibility",
+    "fill-rule",      "clip-path",         "clip-rule",        "mask",              "stroke-width",
+    "stroke-linejoin", "stroke-linecap",   "stroke-miterlimit", "stroke-dasharray", "stroke-dashoffset",
+    "vector-effect",  "font",              "font-family",      "font-size",         "font-weight",
+    "font-style",     "text-anchor",       "letter-spacing"};
+// An entry left out of the list above would be a null name, read as a string.
+static_assert([] {
+  for (const char* name : kStyleProperties)
+    if (!name) return false;
+  return true;
+}());
 
 // Fixed limits of the reader on the style sheets of one document. Drawings have a few hundred
 // rules (in openclipart at most 388 selectors and 749 declarations); a small hostile sheet could

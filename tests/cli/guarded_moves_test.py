@@ -7,9 +7,9 @@ if need be after step 4's operations have repaired them, and are otherwise taken
 Five drawings of the collection exercise every outcome: in `network_cloud_david_klan_01` and
 `ape_miele` moves are kept after a repair (`curve.repaired_moves`), in `cormorant-md` a late
 projection whose curved edges leave a triangle uncertified is kept after the repair certifies it,
-in `fireman_enrique_meza_c_01` a projection to the closest point is refused
-(`curve.refused_moves`) and the vertex goes to another place on its curve instead
-(`curve.projections_elsewhere`), and in `donna_casinista` the closest point would turn the
+in `fireman_enrique_meza_c_01` (its lettering left out: the glyphs' curves would change the mesh
+around the move) a projection to the closest point is refused (`curve.refused_moves`) and the
+vertex goes to another place on its curve instead (`curve.projections_elsewhere`), and in `donna_casinista` the closest point would turn the
 vertex's star over, and it goes elsewhere on its curve after a repair. Each mesh is certified by
 the independent checker (tests/tools/msh_check.py) and every element is at most AMIPS 20 as it
 measures them; only where a move was refused may a primary edge be left straight, and in these
@@ -20,6 +20,7 @@ usage: guarded_moves_test.py CURVEMESH_BINARY [SVG_ROOT]
 """
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -42,12 +43,29 @@ drawings = [
 for d in drawings:
     check(f"{d} is under {root} (Debian's openclipart-svg, installed by scripts/)", os.path.exists(os.path.join(root, d)))
 
+# Drawings meshed without their <text> elements (the rest of the file as it is).
+WITHOUT_TEXT = {"people/fireman_enrique_meza_c_01.svg"}
+
+
+def source_of(drawing):
+    path = os.path.join(root, drawing)
+    if drawing not in WITHOUT_TEXT:
+        return path
+    with open(path, encoding="utf-8") as f:
+        text, removed = re.subn(r"<text\b.*?</text>", "", f.read(), flags=re.S)
+    check(f"{drawing}: its lettering found and left out", removed > 0, removed)
+    copy = os.path.join(tmp.name, os.path.basename(drawing))
+    with open(copy, "w", encoding="utf-8") as f:
+        f.write(text)
+    return copy
+
+
 totals = {"repaired_moves": 0, "refused_moves": 0, "late_projections": 0, "projections_elsewhere": 0}
 straight, elsewhere = {}, {}
 for drawing in drawings:
     name = os.path.basename(drawing)
     out, stats_path = os.path.join(tmp.name, name + ".msh"), os.path.join(tmp.name, name + ".json")
-    r = subprocess.run([binary, "mesh", os.path.join(root, drawing), "-o", out, "--stats", stats_path, "-q"],
+    r = subprocess.run([binary, "mesh", source_of(drawing), "-o", out, "--stats", stats_path, "-q"],
                        capture_output=True, text=True, timeout=600)
     check(f"{name}: exit 0", r.returncode == 0, r.stderr[-600:])
     if r.returncode != 0:

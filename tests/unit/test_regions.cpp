@@ -132,8 +132,8 @@ TEST(Reader, FillLayersInPaintOrderWithRulesAndUse) {
       <circle cx="5" cy="5" r="1" fill="none" stroke="black"/>
       <rect x="8" y="8" width="1" height="1" fill="url(#missing)"/>
       <rect x="1" y="8" width="1" height="1" fill="chartreuse-ish"/>
-      <rect x="3" y="8" width="1" height="1" clip-path="url(#c)"/>)svg"));
-  ASSERT_EQ(soup.fills.size(), 4u);  // the path, the two uses, the clipped rect (black)
+      <rect x="3" y="8" width="1" height="1" mask="url(#c)"/>)svg"));
+  ASSERT_EQ(soup.fills.size(), 4u);  // the path, the two uses, the masked rect (black)
   EXPECT_EQ(soup.fills[0].rule, svg::FillRule::evenodd);
   EXPECT_EQ(soup.fills[0].fill.to_string(), "#ff0000");
   EXPECT_EQ(soup.sources[soup.fills[0].source].id, "p");
