@@ -25,6 +25,41 @@ struct StokesArgs {
   double colour_top = 0;  // the speed at the top of the picture's colour map; 0: the highest speed
 };
 
+// The velocity conditions on the box's sides, found by where their ends are (SVG y points down;
+// top and bottom are alike here): a parabolic inflow on the left, walls on the top, the bottom
+// and every curve; the right side is the natural outflow.
+std::pair<fem::VelocityCondition, fem::VelocityCondition> channel_conditions(const io::HighOrderMesh& mesh,
+                                                                             const geometry::Box2& box,
+                                                                             double speed) {
+  const double tol = 1e-9 * (box.max - box.min).norm();
+  fem::VelocityCondition inflow, walls;
+  walls.velocity = [](const fem::Vec2&) { return fem::Vec2(0, 0); };
+  const double y0 = box.min.y(), y1 = box.max.y();
+  inflow.velocity = [y0, y1, speed](const fem::Vec2& x) {
+    const double s = (x.y() - y0) / (y1 - y0);
+    return fem::Vec2(4 * speed * s * (1 - s), 0);
+  };
+  const auto lines = fem::edge_lines(mesh);
+  const auto on = [tol](double u, double v, double side) {
+    return std::abs(u - side) <= tol && std::abs(v - side) <= tol;
+  };
+  for (int t = 0; t < mesh.triangle_count(); ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int l = lines[t][e];
+      if (l < 0) continue;
+      if (mesh.line_physical[l] != io::kPhysicalBoundary) {
+        walls.edges.emplace_back(t, e);
+        continue;
+      }
+      const fem::Vec2 a = mesh.nodes[mesh.line(l)[0]], b = mesh.nodes[mesh.line(l)[1]];
+      if (on(a.x(), b.x(), box.min.x()))
+        inflow.edges.emplace_back(t, e);
+      else if (!on(a.x(), b.x(), box.max.x()))
+        walls.edges.emplace_back(t, e);
+    }
+  return {std::move(inflow), std::move(walls)};
+}
+
 int run_stokes(const StokesArgs& args) {
   int code = kOk;
   std::optional<Problem> p = prepare_problem(args.solve, &code);
@@ -39,34 +74,7 @@ int run_stokes(const StokesArgs& args) {
   const fem::Geometry geometry(mesh);
   const fem::Space velocity(mesh, 2), pressure(mesh, 1);
 
-  // The box's sides by where their ends are (SVG y points down; top and bottom are alike here).
-  const geometry::Box2& box = p->view;
-  const double tol = 1e-9 * (box.max - box.min).norm();
-  fem::VelocityCondition inflow, walls;
-  walls.velocity = [](const fem::Vec2&) { return fem::Vec2(0, 0); };
-  const double y0 = box.min.y(), y1 = box.max.y(), speed = args.inflow_speed;
-  inflow.velocity = [y0, y1, speed](const fem::Vec2& x) {
-    const double s = (x.y() - y0) / (y1 - y0);
-    return fem::Vec2(4 * speed * s * (1 - s), 0);
-  };
-  const auto lines = fem::edge_lines(mesh);
-  for (int t = 0; t < mesh.triangle_count(); ++t)
-    for (int e = 0; e < 3; ++e) {
-      const int l = lines[t][e];
-      if (l < 0) continue;
-      if (mesh.line_physical[l] != io::kPhysicalBoundary) {
-        walls.edges.emplace_back(t, e);
-        continue;
-      }
-      const fem::Vec2 a = mesh.nodes[mesh.line(l)[0]], b = mesh.nodes[mesh.line(l)[1]];
-      auto on = [tol](double u, double v, double side) {
-        return std::abs(u - side) <= tol && std::abs(v - side) <= tol;
-      };
-      if (on(a.x(), b.x(), box.min.x()))
-        inflow.edges.emplace_back(t, e);
-      else if (!on(a.x(), b.x(), box.max.x()))
-        walls.edges.emplace_back(t, e);  // top or bottom; the right side is the natural outflow
-    }
+  auto [inflow, walls] = channel_conditions(mesh, p->view, args.inflow_speed);
   if (inflow.edges.empty())
     warn(args.solve.input, "the domain does not reach the box's left side; with no inflow the fluid is at rest");
 
