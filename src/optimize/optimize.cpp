@@ -95,6 +95,28 @@ std::vector<Edge> collapse_candidates(const TriMesh& m, const Below& below, cons
   return edges;
 }
 
+// Collapses each of `edges` (collapse_candidates' order) whose ends no collapse of this pass has
+// touched: `collapse(from, to)` tries one direction, a's onto b first; `done(a, b)` hears of each
+// collapse kept. Returns how many were kept. An edge whose ends are untouched is still there: a
+// collapse rewrites only the triangles of the vertex that goes (those it keeps get the other end
+// instead), so it removes or adds edges only at its two ends. (collapse_edge refuses a pair that is
+// no edge anyway.)
+template <class Collapse, class Done>
+long collapse_each_once(const TriMesh& m, const std::vector<Edge>& edges, const Collapse& collapse,
+                        const Done& done) {
+  std::vector<char> touched(m.vertex_count(), 0);
+  long collapsed = 0;
+  for (const Edge& e : edges) {
+    if (touched[e.a] || touched[e.b]) continue;
+    if ((e.a_moves && collapse(e.a, e.b)) || (e.b_moves && collapse(e.b, e.a))) {
+      ++collapsed;
+      touched[e.a] = touched[e.b] = 1;
+      done(e.a, e.b);
+    }
+  }
+  return collapsed;
+}
+
 // One swap pass: every inner edge once, in the order of all_edges as the pass starts (hull edges
 // never swap), each with the triangle it came from as the hint. The corners are copied first: the
 // swaps rewrite triangles as the pass goes.
@@ -325,19 +347,11 @@ long coarsening_collapses(TriMesh& m, const mesh::Constraints& c, const Options&
   const std::vector<Edge> edges = collapse_candidates(
       m, [&](int, int) { return target; },
       [&](int a, int b) { return clock.changed[a] >= since || clock.changed[b] >= since; });
-  std::vector<char> touched(m.vertex_count(), 0);
-  long collapsed = 0;
-  for (const Edge& e : edges) {
-    if (touched[e.a] || touched[e.b]) continue;
-    if ((e.a_moves && collapse(e.a, e.b)) || (e.b_moves && collapse(e.b, e.a))) {
-      ++collapsed;
-      touched[e.a] = touched[e.b] = 1;
-      clock.tick();
-      clock.star_changed(m, e.a, true);  // the one that stayed has the merged star; the other has none
-      clock.star_changed(m, e.b, true);
-    }
-  }
-  return collapsed;
+  return collapse_each_once(m, edges, collapse, [&](int a, int b) {
+    clock.tick();
+    clock.star_changed(m, a, true);  // the one that stayed has the merged star; the other has none
+    clock.star_changed(m, b, true);
+  });
 }
 
 // One round's swaps where they lower the larger energy of the two triangles; in the curved
@@ -468,27 +482,15 @@ long collapse_short_edges(TriMesh& m, const mesh::Constraints& c, const Options&
   // kinds refuse is not tried.
   const std::vector<Edge> edges = collapse_candidates(
       m, [&](int a, int b) { return mesh::kCollapseBelow * edge_target(a, b); }, [](int, int) { return true; });
-  std::vector<char> touched(m.vertex_count(), 0);
   // The length test after the tests on tags and curves: they refuse most collapses (at 16,000
   // curves, every edge is shorter than the target, and most are on or next to a curve), and cost
   // least.
   const mesh::CollapseTest short_enough = [&](int from, int to) {
     return mesh::collapse_keeps_edges_short(m, from, to, edge_target);
   };
-  const auto collapse = [&](int from, int to) {
-    return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough);
-  };
-  // An edge whose ends are untouched is still there: a collapse rewrites only the triangles of the
-  // vertex that goes (those it keeps get the other end instead), so it removes or adds edges only
-  // at its two ends. (collapse_edge refuses a pair that is no edge anyway.)
-  long collapses = 0;
-  for (const Edge& e : edges) {
-    if (touched[e.a] || touched[e.b]) continue;
-    if ((e.a_moves && collapse(e.a, e.b)) || (e.b_moves && collapse(e.b, e.a))) {
-      ++collapses;
-      touched[e.a] = touched[e.b] = 1;
-    }
-  }
+  const long collapses = collapse_each_once(
+      m, edges, [&](int from, int to) { return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough); },
+      [](int, int) {});
   s.collapses += collapses;
   return collapses;
 }
@@ -670,12 +672,7 @@ bool settle_exact_vertices(TriMesh& m, const mesh::Constraints& c, Stats& s) {
 // others on it to round-off), released and swapped as in the iterations; the collapsed vertices
 // (and their exact positions) go.
 void repair_after_settling(TriMesh& m, const mesh::Constraints& c, const Options& o, Stats& s) {
-  for (int t = 0; t < m.triangle_slots(); ++t) {
-    if (!m.alive(t)) continue;
-    const auto tri = m.triangle(t);
-    if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) <= o.stop_max_amips) continue;
-    for (int i = 0; i < 3; ++i) s.released += mesh::release_secondary_edge(m, c, tri[i], tri[(i + 1) % 3]);
-  }
+  release_and_measure(m, c, o, s);  // the energies are not needed here
   s.swaps += swap_pass(m);
   m.compact();
 }
