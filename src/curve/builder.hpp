@@ -37,8 +37,9 @@ namespace curvemesh::curve::detail {
 using mesh::EdgeKind;
 using mesh::TriMesh;
 
-// Whether (a, b) is a primary edge; how many of a triangle's edges are.
-bool is_primary(const TriMesh& m, int a, int b);
+using mesh::followable;
+using mesh::is_primary;
+// How many of a triangle's edges are primary.
 int primary_edges_of(const TriMesh& m, const mesh::Triangle& tri);
 
 // Step 1 (split.cpp); returns the number of splits.
@@ -46,8 +47,6 @@ int split_until_one_primary_edge(TriMesh& m, const mesh::Constraints& c);
 // Order 2, after step 1 (tolerance.cpp): the primary edges on their curve whose quadratic form
 // would be beyond Options::tolerance are split as step 1 splits; returns the number of splits.
 int split_beyond_tolerance(TriMesh& m, const mesh::Constraints& c, const Options& o);
-
-using mesh::followable;
 
 // Steps 2 to 6 on the linear mesh after step 1 (out.linear, compacted).
 class Builder {

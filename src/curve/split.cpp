@@ -4,11 +4,6 @@
 
 namespace curvemesh::curve::detail {
 
-bool is_primary(const TriMesh& m, int a, int b) {
-  const mesh::EdgeFeature* f = m.feature(a, b);
-  return f && f->kind == EdgeKind::primary;
-}
-
 int primary_edges_of(const TriMesh& m, const mesh::Triangle& tri) {
   int n = 0;
   for (int i = 0; i < 3; ++i) n += is_primary(m, tri[i], tri[(i + 1) % 3]);

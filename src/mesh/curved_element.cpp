@@ -4,9 +4,13 @@
 
 namespace curvemesh::mesh {
 
-bool followable(const TriMesh& m, int a, int b) {
+bool is_primary(const TriMesh& m, int a, int b) {
   const EdgeFeature* f = m.feature(a, b);
-  if (!f || f->kind != EdgeKind::primary) return false;
+  return f && f->kind == EdgeKind::primary;
+}
+
+bool followable(const TriMesh& m, int a, int b) {
+  if (!is_primary(m, a, b)) return false;
   for (int v : {a, b}) {
     const VertexTag& tag = m.tag(v);
     if (tag.kind == VertexKind::primary && !tag.on_curve) return false;
@@ -17,8 +21,7 @@ bool followable(const TriMesh& m, int a, int b) {
 int followed_edge(const TriMesh& m, const Triangle& tri) {
   int primary = -1;
   for (int i = 0; i < 3; ++i) {
-    const EdgeFeature* f = m.feature(tri[i], tri[(i + 1) % 3]);
-    if (!f || f->kind != EdgeKind::primary) continue;
+    if (!is_primary(m, tri[i], tri[(i + 1) % 3])) continue;
     if (primary >= 0) return -1;
     primary = i;
   }

@@ -11,6 +11,9 @@
 
 namespace curvemesh::mesh {
 
+// Whether edge (a, b) lies on a primary curve.
+bool is_primary(const TriMesh& m, int a, int b);
+
 // Whether edge (a, b) can follow its curve: it is primary and both ends lie on the curve at their
 // recorded parameters (a primary vertex may still sit on the chord, Fig. 8).
 bool followable(const TriMesh& m, int a, int b);
