@@ -12,23 +12,16 @@ usage: strokes_test.py CURVEMESH_BINARY EXAMPLES_DIR
 import json
 import math
 import os
-import struct
 import subprocess
 import sys
 import tempfile
-import zlib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checks import check, finish  # noqa: E402
+from checks import check, finish, read_png  # noqa: E402
 
 binary, examples = sys.argv[1], sys.argv[2]
 icon = os.path.join(examples, "stroked-icon.svg")
 tmp = tempfile.TemporaryDirectory()
-try:
-    import numpy as np
-except ImportError as e:  # the Debian package python3-numpy
-    print(f"strokes_test: {e}", file=sys.stderr)
-    sys.exit(1)
 
 
 def run(*args):
@@ -46,47 +39,8 @@ def mesh(name, *extra):
 
 
 def png_alpha(path):
-    """The alpha channel of an 8-bit RGBA, non-interlaced PNG (what rsvg-convert writes), as floats
-    in [0, 1]: PNG's five row filters undone (ISO/IEC 15948 §9)."""
-    data = open(path, "rb").read()
-    assert data[:8] == b"\x89PNG\r\n\x1a\n"
-    pos, idat, width, height = 8, b"", 0, 0
-    while pos < len(data):
-        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
-        body = data[pos + 8:pos + 8 + length]
-        if kind == b"IHDR":
-            width, height, depth, colour, _, _, interlace = struct.unpack(">IIBBBBB", body)
-            assert depth == 8 and colour == 6 and interlace == 0, (depth, colour, interlace)
-        elif kind == b"IDAT":
-            idat += body
-        pos += 12 + length
-    raw = np.frombuffer(zlib.decompress(idat), dtype=np.uint8).reshape(height, 1 + 4 * width)
-    rows = np.zeros((height, 4 * width), dtype=np.uint8)
-    previous = np.zeros(4 * width, dtype=np.int64)
-    for y in range(height):
-        kind, line = raw[y, 0], raw[y, 1:].astype(np.int64)
-        if kind == 0:
-            row = line
-        elif kind == 1:  # Sub: each channel a running sum along the row
-            row = np.cumsum(line.reshape(width, 4), axis=0).reshape(-1) % 256
-        elif kind == 2:  # Up
-            row = (line + previous) % 256
-        else:  # Average or Paeth: each byte depends on the one before it
-            row = np.zeros_like(line)
-            for x in range(4 * width):
-                a = row[x - 4] if x >= 4 else 0
-                b = previous[x]
-                if kind == 3:
-                    row[x] = (line[x] + (a + b) // 2) % 256
-                else:
-                    c = previous[x - 4] if x >= 4 else 0
-                    p = a + b - c
-                    pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                    predictor = a if pa <= pb and pa <= pc else (b if pb <= pc else c)
-                    row[x] = (line[x] + predictor) % 256
-        rows[y] = row
-        previous = row
-    return rows.reshape(height, width, 4)[:, :, 3] / 255.0
+    """The alpha channel of a PNG (what rsvg-convert writes) as floats in [0, 1]."""
+    return read_png(path)[..., 3] / 255.0
 
 
 # --- the painted area: librsvg's rendering against the mesh's -------------------------------

@@ -7,8 +7,6 @@ region named by its id (else text#INDEX), and the warning for a family that is n
 
 usage: text_test.py CURVEMESH_BINARY
 """
-import importlib.machinery
-import importlib.util
 import json
 import os
 import shutil
@@ -17,19 +15,12 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checks import check, finish  # noqa: E402
+from checks import check, finish, read_png  # noqa: E402
 
 binary = sys.argv[1]
 here = os.path.dirname(os.path.abspath(__file__))
 checker = os.path.join(here, "..", "tools", "msh_check.py")
 tmp = tempfile.TemporaryDirectory()
-
-# The PNG reader of scripts/region-agreement (numpy and zlib only).
-loader = importlib.machinery.SourceFileLoader("region_agreement", os.path.join(here, "..", "..", "scripts",
-                                                                                  "region-agreement"))
-spec = importlib.util.spec_from_loader("region_agreement", loader)
-region_agreement = importlib.util.module_from_spec(spec)
-loader.exec_module(region_agreement)
 
 # Two texts: a bold sans-serif word with a kerned pair (AV) and an italic serif word anchored at
 # its middle inside a scaled group; the second text without an id.
@@ -87,7 +78,7 @@ if rsvg and filled > 0:
     r = subprocess.run([rsvg, "--zoom", str(zoom), drawing, "-o", png], capture_output=True, text=True, timeout=300)
     check("rsvg-convert renders the drawing", r.returncode == 0, r.stderr)
     if r.returncode == 0:
-        image = region_agreement.read_png(png)
+        image = read_png(png)
         painted = image[..., 3].astype(float).sum() / 255.0 / zoom ** 2
         print(f"text: filled area {filled:.3f} in the mesh, {painted:.3f} painted by rsvg-convert "
               f"({100 * (filled / painted - 1):+.3f} %)")
