@@ -24,11 +24,37 @@ double polygon_length(const CubicBezier& c) {
   return (c.p[1] - c.p[0]).norm() + (c.p[2] - c.p[1]).norm() + (c.p[3] - c.p[2]).norm();
 }
 
+constexpr double kUnit = std::numeric_limits<double>::epsilon();
+
 // |c'|³ − d·(c' × c''): the sign of 1 − d·κ times |c'|³, without dividing by |c'|.
 double cusp_function(const CubicBezier& c, double t, double d) {
   const Vec2 v = c.derivative(t);
   const double s = v.norm();
   return s * s * s - d * cross(v, c.second_derivative(t));
+}
+
+// cusp_function's value where its sign is not lost in rounding, else 0. Beside a cusp of the curve
+// both terms vanish, and a straight curve (c' ∥ c'') has a cross product that is round-off alone:
+// its sign there would cut the offset at cusps it does not have, into pieces no fit can meet. c'
+// is a sum of the control polygon's legs with an absolute error of a few units of their size,
+// whatever its own size.
+double cusp_sign_value(const CubicBezier& c, double t, double d) {
+  const Vec2 v = c.derivative(t), w = c.second_derivative(t);
+  const double s = v.norm(), f = s * s * s - d * cross(v, w);
+  const double error = 16 * kUnit * (s * s * s + std::abs(d) * (s + 3 * polygon_length(c)) * w.norm());
+  return std::abs(f) > error ? f : 0.0;
+}
+
+// How far offset_point may be off at parameters [a, b] from rounding alone: of the coordinates,
+// and of the normal's direction, c' computed with an absolute error of a few units of the control
+// polygon's size and divided by |c'| (which vanishes at a cusp of the curve). A fit is asked to be
+// no closer to the offset than this: it cannot be told apart from the exact offset any closer.
+double rounding_reach(const CubicBezier& c, double d, double a, double b) {
+  double slowest = std::numeric_limits<double>::infinity();
+  for (int k = 1; k < 16; ++k) slowest = std::min(slowest, c.derivative(a + (b - a) * k / 16).norm());
+  const double size = polygon_length(c);
+  const double coordinates = c.eval((a + b) / 2).lpNorm<Eigen::Infinity>() + size + std::abs(d);
+  return 16 * kUnit * (coordinates + std::abs(d) * 3 * size / slowest);
 }
 
 // The exact offset's speed |c'|·|1 − d·κ| at t, its limit from inside [a, b] where c' vanishes.
@@ -58,10 +84,11 @@ class Fitter {
 
   void fit(double a, double b, double sign, bool smooth, int depth) {
     ++fits_;
+    const double tolerance = std::max(tolerance_, rounding_reach(c_, d_, a, b));
     const Vec2 p0 = offset_point(c_, a, d_, lo_, hi_), p3 = offset_point(c_, b, d_, lo_, hi_);
     // An interval whose offset stays within the tolerance of its start (beside a cusp of the curve,
     // where roots of 1 − d·κ crowd into a few ulps): its chord is close enough.
-    if (within_reach(p0, a, b)) {
+    if (within_reach(p0, a, b, tolerance)) {
       run_.pieces.push_back(CubicBezier::line(p0, p3));
       run_.smooth.push_back(smooth);
       return;
@@ -73,8 +100,8 @@ class Fitter {
     CubicBezier best;
     double error = std::numeric_limits<double>::infinity();
     const auto consider = [&](const CubicBezier& candidate) {
-      if (const double e = distance(candidate, a, b); e < error) best = candidate, error = e;
-      return error <= tolerance_;
+      if (const double e = distance(candidate, a, b, tolerance); e < error) best = candidate, error = e;
+      return error <= tolerance;
     };
     const Vec2 r = 8.0 / 3.0 * (offset_point(c_, (a + b) / 2, d_, lo_, hi_) - (p0 + p3) / 2);
     const double det = cross(t3, t0);  // of the system [t0, −t3]·(a0, a1) = r
@@ -89,7 +116,7 @@ class Fitter {
     if (!done)
       consider(hermite(p0, t0, h * offset_speed(c_, a, d_, lo_, hi_), p3, t3,
                        h * offset_speed(c_, b, d_, lo_, hi_)));
-    if (error <= tolerance_ || depth >= kMaxDepth || fits_ >= kMaxFits) {
+    if (error <= tolerance || depth >= kMaxDepth || fits_ >= kMaxFits) {
       run_.pieces.push_back(best);
       run_.smooth.push_back(smooth);
       return;
@@ -105,9 +132,9 @@ class Fitter {
   static constexpr int kChecks = 16;
 
   // Whether the offset over [a, b] lies within half the tolerance of p0 (at 16 parameters).
-  bool within_reach(const Vec2& p0, double a, double b) const {
+  bool within_reach(const Vec2& p0, double a, double b, double tolerance) const {
     for (int k = 1; k <= kChecks; ++k)
-      if ((offset_point(c_, a + (b - a) * k / kChecks, d_, lo_, hi_) - p0).norm() > tolerance_ / 2)
+      if ((offset_point(c_, a + (b - a) * k / kChecks, d_, lo_, hi_) - p0).norm() > tolerance / 2)
         return false;
     return true;
   }
@@ -118,7 +145,7 @@ class Fitter {
   // the piece, at two points between each two of those closest points, to the offset between the
   // parameters they came from (golden-section search). A piece that runs back on itself (closest
   // points out of order by more than round-off) fails at once.
-  double distance(const CubicBezier& piece, double a, double b) const {
+  double distance(const CubicBezier& piece, double a, double b, double tolerance) const {
     std::array<double, kChecks + 1> t{}, s{};
     t[0] = a, s[0] = 0, t[kChecks] = b, s[kChecks] = 1;
     double worst = 0;
@@ -126,7 +153,7 @@ class Fitter {
       t[k] = a + (b - a) * k / kChecks;
       const ClosestPoint c = nearest_on(piece, offset_point(c_, t[k], d_, lo_, hi_), s[k - 1]);
       worst = std::max(worst, c.distance);
-      if (worst > tolerance_) return worst;  // a fit that fails need not be measured further
+      if (worst > tolerance) return worst;  // a fit that fails need not be measured further
       s[k] = c.t;
       if (s[k] < s[k - 1] - 1e-6) return std::numeric_limits<double>::infinity();
       s[k] = std::max(s[k], s[k - 1]);
@@ -232,10 +259,11 @@ std::vector<double> offset_cusp_parameters(const CubicBezier& c, double d, doubl
   constexpr int kSamples = 64;
   std::vector<double> out;
   const double margin = 1e-9 * (hi - lo);
-  double t_prev = lo + margin, f_prev = cusp_function(c, t_prev, d);
+  double t_prev = lo + margin, f_prev = cusp_sign_value(c, t_prev, d);
   for (int i = 1; i <= kSamples; ++i) {
     const double t = i == kSamples ? hi - margin : lo + (hi - lo) * i / kSamples;
-    const double f = cusp_function(c, t, d);
+    const double f = cusp_sign_value(c, t, d);
+    if (f == 0) continue;  // no sign to compare: the last one that has one stays
     if ((f_prev < 0) != (f < 0) && f_prev != 0) {
       double x = t_prev, y = t, fx = f_prev;
       for (int k = 0; k < 60 && y - x > 1e-15; ++k) {

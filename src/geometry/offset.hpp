@@ -39,7 +39,9 @@ struct OffsetRun {
 
 // The offset of c at signed distance d: one run, or one more after each cusp of c itself (where
 // the exact offset jumps across the curve). Each piece is within `tolerance` of the exact offset
-// over its parameter interval, both ways (checked from 15 points of the offset to their closest
+// over its parameter interval — or, where rounding alone moves the offset's points farther (its
+// normal beside a cusp of c, where c' is nearly zero; coordinates far larger than the tolerance),
+// within a bound of that rounding —, both ways (checked from 15 points of the offset to their closest
 // points on the piece, and from 32 points of the piece between those to the offset; cut in two
 // until it is, at most 40 times deep); pieces are cut at the offset's cusps, so
 // that each fits a curve of constant direction of travel. A curve that is a point has no run.

@@ -152,6 +152,37 @@ TEST(Offset, CuspOfTheCurveStartsANewRun) {
   expect_offsets_within(cusp, 0.2, 1e-6);
 }
 
+TEST(Offset, CurveRunningOutAndBackAlongALine) {
+  // p1 = p2, p3 = p0 (drawn as "c a, a, 0 0"): a straight spike out and back with a cusp at its tip,
+  // at coordinates far from the origin and a half width far below them. The cross product c' × c''
+  // is round-off alone there: no cusp of the offset may be read from its sign, and the normal's
+  // round-off beside the tip may not be taken for an error a fit could still reduce.
+  const Vec2 p0(12.756, 53.842), a(-0.144, -0.899);
+  const CubicBezier spike(p0, p0 + a, p0 + a, p0);
+  const double d = 0.018, tolerance = 1e-8 * 2 * d;
+  for (const double side : {d, -d}) {
+    SCOPED_TRACE("offset " + std::to_string(side));
+    EXPECT_TRUE(geometry::offset_cusp_parameters(spike, side, 0, 0.5).empty());
+    EXPECT_TRUE(geometry::offset_cusp_parameters(spike, side, 0.5, 1).empty());
+    const std::vector<OffsetRun> runs = geometry::offset_cubic(spike, side, tolerance);
+    ASSERT_EQ(runs.size(), 2u);
+    for (const OffsetRun& run : runs) EXPECT_LE(run.pieces.size(), 4u);
+  }
+  expect_offsets_within(spike, d, 1e-9);
+}
+
+TEST(Offset, ToleranceBelowTheCoordinatesRoundOff) {
+  // A thin stroke far from the origin: a tolerance of 1e-8 of the width is below the spacing of
+  // doubles at these coordinates; the pieces are as few as the shape needs, not as many as the
+  // work bound allows.
+  const CubicBezier far({1e7, 1e7}, {1e7 + 1, 1e7 + 2}, {1e7 + 3, 1e7 + 2}, {1e7 + 4, 1e7});
+  for (const double side : {1e-4, -1e-4}) {
+    const std::vector<OffsetRun> runs = geometry::offset_cubic(far, side, 1e-8 * 2e-4);
+    ASSERT_EQ(runs.size(), 1u);
+    EXPECT_LE(runs[0].pieces.size(), 64u);
+  }
+}
+
 TEST(Offset, TightLoop) {
   // A loop whose apex bends tighter than the offset distance on its inner side.
   const CubicBezier loop({0, 0}, {3, 2}, {-1, 2}, {2, 0});
