@@ -174,9 +174,11 @@ Runner add_batch_command(CLI::App& app) {
                   "K/N: mesh only the drawings whose index i in the sorted list has i % N == K-1 (K from 1), "
                   "to split a corpus over N runs whose reports add up to the whole")
       ->capture_default_str();
-  args->mesh.options = add_mesh_options(*cmd, args->mesh.parameters, args->mesh.msh);
+  args->mesh.options = add_batch_run_options(*cmd, args->mesh.parameters);
+  for (const CLI::Option* o : add_mesh_options(*cmd, args->mesh.parameters, args->mesh.msh))
+    args->mesh.options.push_back(o);
   cmd->footer(
-      "The options from --linear on are passed on to each `curvemesh mesh` as given; see "
+      "The options from --regions on are passed on to each `curvemesh mesh` as given; see "
       "`curvemesh mesh --help`.");
   return [args] { return run_batch(*args); };
 }

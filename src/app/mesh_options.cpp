@@ -70,6 +70,15 @@ std::vector<const CLI::Option*> add_groups(CLI::App& cmd, Parameters& p, std::in
   return added;
 }
 
+// The options of the table with these names (as --help shows them first), in the table's order.
+std::vector<const CLI::Option*> add_named(CLI::App& cmd, Parameters& p, std::initializer_list<std::string_view> names) {
+  std::vector<const CLI::Option*> added;
+  for (const ParameterOption& o : parameter_options())
+    if (std::find(names.begin(), names.end(), std::string_view(o.option)) != names.end())
+      added.push_back(add_parameter(cmd, o, p));
+  return added;
+}
+
 }  // namespace
 
 void add_memory_limit_option(CLI::App& cmd, double& gigabytes) {
@@ -111,6 +120,10 @@ std::vector<const CLI::Option*> add_mesh_options(CLI::App& cmd, pipeline::Parame
 
 void add_run_options(CLI::App& cmd, pipeline::Parameters& p) {
   add_groups(cmd, p, {"run"});
+}
+
+std::vector<const CLI::Option*> add_batch_run_options(CLI::App& cmd, pipeline::Parameters& p) {
+  return add_named(cmd, p, {"--regions", "--domain"});
 }
 
 bool parameters_valid(const pipeline::Parameters& p) {

@@ -25,6 +25,10 @@ void add_feature_options(CLI::App& cmd, pipeline::Parameters& parameters);
 // The group "run": --regions, --domain, --stop-after (`mesh` alone).
 void add_run_options(CLI::App& cmd, pipeline::Parameters& parameters);
 
+// --regions and --domain, what `batch` passes on of the group "run" (not --stop-after: a batch
+// certifies finished meshes). Returns the options it registered.
+std::vector<const CLI::Option*> add_batch_run_options(CLI::App& cmd, pipeline::Parameters& parameters);
+
 // --memory-limit GB: the process's address space (setrlimit RLIMIT_AS), as batch sets its
 // children's; 0 (the default) leaves it as it is.
 void add_memory_limit_option(CLI::App& cmd, double& gigabytes);

@@ -262,6 +262,20 @@ check("forwarding: --no-features (a flag) leaves no curved triangle where the de
       and (first.get(first_drawing, {}).get("curved_triangles") or 0) > 0,
       (nofeat, first.get(first_drawing)))
 
+icon = os.path.join(inputs, "stroked-icon.svg")
+painted_out = os.path.join(root, "out-painted")
+r, _ = run("batch", icon, "-o", painted_out, "--linear", "--domain", "painted", "--regions")
+painted = read_report(os.path.join(painted_out, "report.jsonl"))
+painted_stats = {}
+if painted and painted[0].get("status") == "ok":
+    with open(os.path.join(painted_out, "stroked-icon.json")) as f:
+        painted_stats = json.load(f)
+check("forwarding: --domain painted and --regions reach the child (the strokes' areas meshed and tagged)",
+      [x.get("status") for x in painted] == ["ok"]
+      and painted_stats.get("domain", {}).get("name") == "painted"
+      and any(str(x.get("name", "")).endswith(".stroke") for x in painted_stats.get("regions", [])),
+      (painted, painted_stats.get("domain"), r.stderr[-500:]))
+
 # --- curvemesh report ----------------------------------------------------------------------------
 html = os.path.join(root, "report.html")
 r, _ = run("report", os.path.join(out, "report.jsonl"), "--html", html)
@@ -641,7 +655,7 @@ for name in (list_fifo, "/dev/zero"):
 r, _ = run("batch", "--help")
 check("batch --help explains every option", r.returncode == 0 and all(
     o in r.stdout for o in ("--jobs", "--timeout", "--memory-limit", "--report", "--force", "--shard", "--linear",
-                            "--edge-length", "--mu", "--epsilon", "--min-angle", "--max-iterations", "--msh-version")),
+                            "--domain", "--regions", "--strokes", "--edge-length", "--mu", "--epsilon", "--min-angle", "--max-iterations", "--msh-version")),
       r.stdout)
 r, _ = run("report", "--help")
 check("report --help", r.returncode == 0 and "--html" in r.stdout, r.stdout)
