@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "geometry/bezier_analysis.hpp"
 #include "geometry/closest_point.hpp"
@@ -255,14 +256,31 @@ std::vector<double> cusp_parameters(const CubicBezier& c) {
   return out;
 }
 
+namespace {
+
+// The sample of cusp_sign_value nearest the end `end` of [lo, hi] (towards `inward`) whose sign
+// is not lost in rounding: where c' vanishes at the end, c' and c'' turn parallel there and both
+// terms vanish faster than their rounding, so the sample steps inwards, 1e-9 of the interval at
+// first, ten times farther each time, to a hundredth of it at most.
+std::pair<double, double> end_sample(const CubicBezier& c, double d, double end, double inward) {
+  double t = end, f = 0;
+  for (double margin = 1e-9; margin <= 1e-2 && f == 0; margin *= 10) {
+    t = end + margin * inward;
+    f = cusp_sign_value(c, t, d);
+  }
+  return {t, f};
+}
+
+}  // namespace
+
 std::vector<double> offset_cusp_parameters(const CubicBezier& c, double d, double lo, double hi) {
   constexpr int kSamples = 64;
   std::vector<double> out;
-  const double margin = 1e-9 * (hi - lo);
-  double t_prev = lo + margin, f_prev = cusp_sign_value(c, t_prev, d);
+  auto [t_prev, f_prev] = end_sample(c, d, lo, hi - lo);
   for (int i = 1; i <= kSamples; ++i) {
-    const double t = i == kSamples ? hi - margin : lo + (hi - lo) * i / kSamples;
-    const double f = cusp_sign_value(c, t, d);
+    const auto [t, f] = i == kSamples ? end_sample(c, d, hi, lo - hi)
+                                      : std::pair(lo + (hi - lo) * i / kSamples,
+                                                  cusp_sign_value(c, lo + (hi - lo) * i / kSamples, d));
     if (f == 0) continue;  // no sign to compare: the last one that has one stays
     if ((f_prev < 0) != (f < 0) && f_prev != 0) {
       double x = t_prev, y = t, fx = f_prev;

@@ -171,6 +171,21 @@ TEST(Offset, CurveRunningOutAndBackAlongALine) {
   expect_offsets_within(spike, d, 1e-9);
 }
 
+TEST(Offset, CurveWhoseEndControlPointIsItsEnd) {
+  // p2 = p3: c' vanishes at the end, where c' and c'' turn parallel and |c'|³ − d·(c' × c'')
+  // vanishes faster than its rounding. The curvature grows without bound towards the end, so the
+  // offset on its inner side has a cusp just before it, to be found from a sample whose sign holds.
+  const CubicBezier c({511.72576, 32.575392}, {511.28301, 34.789162}, {513.49678, 36.560172},
+                      {513.49678, 36.560172});
+  const std::vector<double> cusps = geometry::offset_cusp_parameters(c, -0.625);
+  ASSERT_EQ(cusps.size(), 1u);
+  EXPECT_NEAR(cusps[0], 0.98657, 1e-5);
+  const std::vector<OffsetRun> runs = geometry::offset_cubic(c, -0.625, 1.25e-8);
+  ASSERT_EQ(runs.size(), 1u);
+  EXPECT_LE(runs[0].pieces.size(), 64u);
+  expect_offsets_within(c, 0.625, 1e-7);
+}
+
 TEST(Offset, ToleranceBelowTheCoordinatesRoundOff) {
   // A thin stroke far from the origin: a tolerance of 1e-8 of the width is below the spacing of
   // doubles at these coordinates; the pieces are as few as the shape needs, not as many as the
