@@ -271,29 +271,60 @@ std::pair<double, double> end_sample(const CubicBezier& c, double d, double end,
   return {t, f};
 }
 
+// The parameter in (x, y) where cusp_function changes sign, by bisection; fx its value at x.
+double sign_change(const CubicBezier& c, double d, double x, double y, double fx) {
+  for (int k = 0; k < 60 && y - x > 1e-15; ++k) {
+    const double m = (x + y) / 2, fm = cusp_function(c, m, d);
+    if ((fm < 0) == (fx < 0))
+      x = m, fx = fm;
+    else
+      y = m;
+  }
+  return (x + y) / 2;
+}
+
+// Where sign·cusp_function is least on [x, y], by golden-section search.
+double deepest(const CubicBezier& c, double d, double x, double y, double sign) {
+  constexpr double g = 0.6180339887498949;
+  const auto at = [&](double t) { return sign * cusp_function(c, t, d); };
+  double a = y - g * (y - x), b = x + g * (y - x), fa = at(a), fb = at(b);
+  for (int i = 0; i < 40; ++i) {
+    if (fa < fb)
+      y = b, b = a, fb = fa, a = y - g * (y - x), fa = at(a);
+    else
+      x = a, a = b, fa = fb, b = x + g * (y - x), fb = at(b);
+  }
+  return fa < fb ? a : b;
+}
+
 }  // namespace
 
 std::vector<double> offset_cusp_parameters(const CubicBezier& c, double d, double lo, double hi) {
   constexpr int kSamples = 64;
+  // The samples whose sign holds, in order.
+  std::vector<std::pair<double, double>> samples = {end_sample(c, d, lo, hi - lo)};
+  for (int i = 1; i < kSamples; ++i) {
+    const double t = lo + (hi - lo) * i / kSamples;
+    samples.emplace_back(t, cusp_sign_value(c, t, d));
+  }
+  samples.push_back(end_sample(c, d, hi, lo - hi));
+  std::erase_if(samples, [](const auto& s) { return s.second == 0; });
   std::vector<double> out;
-  auto [t_prev, f_prev] = end_sample(c, d, lo, hi - lo);
-  for (int i = 1; i <= kSamples; ++i) {
-    const auto [t, f] = i == kSamples ? end_sample(c, d, hi, lo - hi)
-                                      : std::pair(lo + (hi - lo) * i / kSamples,
-                                                  cusp_sign_value(c, lo + (hi - lo) * i / kSamples, d));
-    if (f == 0) continue;  // no sign to compare: the last one that has one stays
-    if ((f_prev < 0) != (f < 0) && f_prev != 0) {
-      double x = t_prev, y = t, fx = f_prev;
-      for (int k = 0; k < 60 && y - x > 1e-15; ++k) {
-        const double m = (x + y) / 2, fm = cusp_function(c, m, d);
-        if ((fm < 0) == (fx < 0))
-          x = m, fx = fm;
-        else
-          y = m;
-      }
-      out.push_back((x + y) / 2);
+  for (std::size_t i = 1; i < samples.size(); ++i) {
+    const auto [x, fx] = samples[i - 1];
+    const auto [y, fy] = samples[i];
+    if ((fx < 0) != (fy < 0)) {
+      out.push_back(sign_change(c, d, x, y, fx));
+      continue;
     }
-    t_prev = t, f_prev = f;
+    // The same sign at both: a bend tighter than |d| between them shows as a dip of the function
+    // through zero, two cusps (a swallowtail) between two samples.
+    const double m = deepest(c, d, x, y, fx < 0 ? -1.0 : 1.0);
+    const double fm = cusp_sign_value(c, m, d);
+    if (fm != 0 && (fm < 0) != (fx < 0)) {
+      out.push_back(sign_change(c, d, x, m, fx));
+      out.push_back(sign_change(c, d, m, y, fm));
+    }
   }
   return out;
 }

@@ -24,7 +24,11 @@ std::vector<double> cusp_parameters(const CubicBezier& c);
 // on (d·κ(t) = 1, κ signed as n turns), sorted: the offset has a cusp there — its speed
 // |c'|·|1 − d·κ| vanishes and its direction turns over — and between two of them it runs backwards
 // (the swallowtail of an offset where the curve bends tighter than |d|). Found as the sign changes
-// of |c'|³ − d·(c' × c'') on 64 samples, refined by bisection.
+// of |c'|³ − d·(c' × c'') on 64 samples, and as its dips through zero between two samples of one
+// sign (a bend so tight that both cusps of its swallowtail fall between them: the least value
+// there by golden-section search), refined by bisection. A sample whose sign is within that
+// function's rounding error has none (beside a cusp of c, or where c is straight); the samples
+// at the ends step inwards until theirs holds.
 std::vector<double> offset_cusp_parameters(const CubicBezier& c, double d, double lo = 0.0, double hi = 1.0);
 
 // One connected piece of an offset: cubics joined end to start exactly, covering the parameters

@@ -186,6 +186,21 @@ TEST(Offset, CurveWhoseEndControlPointIsItsEnd) {
   expect_offsets_within(c, 0.625, 1e-7);
 }
 
+TEST(Offset, SwallowtailBetweenTwoSamples) {
+  // A hairline (half width 0.018) along a curve that turns back within a few hundredths of its
+  // parameter: both cusps of the inner offset lie between two of the 64 samples, where the
+  // function has one sign; found from the dip between them, the pieces are as few as the shape
+  // needs.
+  const CubicBezier c({90.782, 276.395}, {90.522, 278.085}, {88.053, 258.716}, {87.403, 246.019});
+  const std::vector<double> cusps = geometry::offset_cusp_parameters(c, 0.018);
+  ASSERT_EQ(cusps.size(), 2u);
+  EXPECT_EQ(std::floor(cusps[0] * 64), std::floor(cusps[1] * 64));  // in one sample interval
+  const std::vector<OffsetRun> runs = geometry::offset_cubic(c, 0.018, 0.036e-8);
+  ASSERT_EQ(runs.size(), 1u);
+  EXPECT_LE(runs[0].pieces.size(), 100u);
+  expect_offsets_within(c, 0.018, 1e-8);
+}
+
 TEST(Offset, ToleranceBelowTheCoordinatesRoundOff) {
   // A thin stroke far from the origin: a tolerance of 1e-8 of the width is below the spacing of
   // doubles at these coordinates; the pieces are as few as the shape needs, not as many as the
