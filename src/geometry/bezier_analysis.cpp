@@ -65,6 +65,12 @@ Vec2 unit_tangent(const CubicBezier& c, double t, double lo, double hi) {
   return tangent(c, t, lo, hi, polygon_size(c));
 }
 
+Vec2 unit_tangent(const CubicBezier& c, double t, double lo, double hi, double size) {
+  return tangent(c, t, lo, hi, size);
+}
+
+double control_polygon_size(const CubicBezier& c) { return polygon_size(c); }
+
 std::vector<double> inflection_parameters(const CubicBezier& k, double tolerance_rel) {
   const double size = polygon_size(k);
   if (!(size > 0) || !std::isfinite(size)) return {};

@@ -23,6 +23,10 @@ double turning_angle(const CubicBezier& c, double t0 = 0.0, double t1 = 1.0);
 // control points at an end) the direction is its limit from inside [lo, hi]; (1, 0) for a curve
 // that is a point.
 Vec2 unit_tangent(const CubicBezier& c, double t, double lo = 0.0, double hi = 1.0);
+// The same, for a caller asking many times of one curve: `size` is control_polygon_size(c), what
+// c' is measured against (unit_tangent measures it at every call).
+Vec2 unit_tangent(const CubicBezier& c, double t, double lo, double hi, double size);
+double control_polygon_size(const CubicBezier& c);
 
 // The angle between the unit tangents at t0 and t1 (same limits where c' vanishes). Equal to the
 // turning over [t0, t1] when the curve has no inflection there and turns by less than π (a

@@ -81,12 +81,12 @@ CubicBezier hermite(const Vec2& p0, const Vec2& t0, double a0, const Vec2& p3, c
 class Fitter {
  public:
   Fitter(const CubicBezier& c, double d, double tolerance, double lo, double hi, OffsetRun& run)
-      : c_(c), d_(d), tolerance_(tolerance), lo_(lo), hi_(hi), run_(run) {}
+      : c_(c), d_(d), tolerance_(tolerance), lo_(lo), hi_(hi), size_(control_polygon_size(c)), run_(run) {}
 
   void fit(double a, double b, double sign, bool smooth, int depth) {
     ++fits_;
     const double tolerance = std::max(tolerance_, rounding_reach(c_, d_, a, b));
-    const Vec2 p0 = offset_point(c_, a, d_, lo_, hi_), p3 = offset_point(c_, b, d_, lo_, hi_);
+    const Vec2 p0 = point(a), p3 = point(b);
     // An interval whose offset stays within the tolerance of its start (beside a cusp of the curve,
     // where roots of 1 − d·κ crowd into a few ulps): its chord is close enough.
     if (within_reach(p0, a, b, tolerance)) {
@@ -94,7 +94,7 @@ class Fitter {
       run_.smooth.push_back(smooth);
       return;
     }
-    const Vec2 t0 = sign * unit_tangent(c_, a, lo_, hi_), t3 = sign * unit_tangent(c_, b, lo_, hi_);
+    const Vec2 t0 = sign * tangent(a), t3 = sign * tangent(b);
     // The midpoint fit first (B(1/2) = (p0 + p3)/2 + 3/8·(a0·t0 − a1·t3) set to the offset's
     // midpoint), then the C1 fit (the arms a third of the offset's speed times the interval): the
     // first within the tolerance is taken, else the closer.
@@ -104,7 +104,7 @@ class Fitter {
       if (const double e = distance(candidate, a, b, tolerance); e < error) best = candidate, error = e;
       return error <= tolerance;
     };
-    const Vec2 r = 8.0 / 3.0 * (offset_point(c_, (a + b) / 2, d_, lo_, hi_) - (p0 + p3) / 2);
+    const Vec2 r = 8.0 / 3.0 * (point((a + b) / 2) - (p0 + p3) / 2);
     const double det = cross(t3, t0);  // of the system [t0, −t3]·(a0, a1) = r
     bool done = false;
     if (std::abs(det) > 1e-6) {
@@ -128,6 +128,13 @@ class Fitter {
   }
 
  private:
+  // unit_tangent and offset_point of c_ on [lo_, hi_], its control polygon measured once.
+  Vec2 tangent(double t) const { return unit_tangent(c_, t, lo_, hi_, size_); }
+  Vec2 point(double t) const {
+    const Vec2 u = tangent(t);
+    return c_.eval(t) + d_ * Vec2(-u.y(), u.x());
+  }
+
   static constexpr int kMaxDepth = 40;
   static constexpr int kMaxFits = 1 << 16;  // a bound on the work for one curve, whatever happens
   static constexpr int kChecks = 16;
@@ -135,7 +142,7 @@ class Fitter {
   // Whether the offset over [a, b] lies within half the tolerance of p0 (at 16 parameters).
   bool within_reach(const Vec2& p0, double a, double b, double tolerance) const {
     for (int k = 1; k <= kChecks; ++k)
-      if ((offset_point(c_, a + (b - a) * k / kChecks, d_, lo_, hi_) - p0).norm() > tolerance / 2)
+      if ((point(a + (b - a) * k / kChecks) - p0).norm() > tolerance / 2)
         return false;
     return true;
   }
@@ -152,7 +159,7 @@ class Fitter {
     double worst = 0;
     for (int k = 1; k < kChecks; ++k) {
       t[k] = a + (b - a) * k / kChecks;
-      const ClosestPoint c = nearest_on(piece, offset_point(c_, t[k], d_, lo_, hi_), s[k - 1]);
+      const ClosestPoint c = nearest_on(piece, point(t[k]), s[k - 1]);
       worst = std::max(worst, c.distance);
       if (worst > tolerance) return worst;  // a fit that fails need not be measured further
       s[k] = c.t;
@@ -182,7 +189,9 @@ class Fitter {
       const double slope = v.squaredNorm() + r.dot(piece.second_derivative(s));
       if (!(slope > 0)) break;
       const double step = r.dot(v) / slope, next = std::clamp(s - step, 0.0, 1.0);
-      const bool settled = std::abs(next - s) < 1e-13;
+      // Settled at a step of 1e-10: Newton's error after it is of the order of its square, and
+      // a step of 1e-13 is below the rounding of s for many points, which never settle.
+      const bool settled = std::abs(next - s) < 1e-10;
       s = next;
       if (settled) return {s, piece.eval(s), (piece.eval(s) - q).norm()};
     }
@@ -194,7 +203,7 @@ class Fitter {
   // c's tangent), which leaves an error second-order in how far the search stopped from the foot.
   // An end of [a, b] nearer than any inner point is taken as it is.
   double distance_to_offset(const Vec2& q, double a, double b) const {
-    const auto at = [&](double t) { return (offset_point(c_, t, d_, lo_, hi_) - q).norm(); };
+    const auto at = [&](double t) { return (point(t) - q).norm(); };
     constexpr double g = 0.6180339887498949;
     const double lo = a, hi = b;
     double x = b - g * (b - a), y = a + g * (b - a), fx = at(x), fy = at(y);
@@ -208,12 +217,13 @@ class Fitter {
     const double t = fx < fy ? x : y;
     const double ends = std::min(at(lo), at(hi));
     if (ends <= std::min(fx, fy)) return ends;
-    const Vec2 foot = offset_point(c_, t, d_, lo_, hi_);
-    return std::abs(cross(q - foot, unit_tangent(c_, t, lo_, hi_)));
+    const Vec2 foot = point(t);
+    return std::abs(cross(q - foot, tangent(t)));
   }
 
   const CubicBezier& c_;
   double d_, tolerance_, lo_, hi_;
+  double size_;  // of c's control polygon, for its unit tangent
   OffsetRun& run_;
   int fits_ = 0;
 };
