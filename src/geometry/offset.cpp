@@ -96,28 +96,29 @@ class Fitter {
     }
     const Vec2 t0 = sign * tangent(a), t3 = sign * tangent(b);
     // The midpoint fit first (B(1/2) = (p0 + p3)/2 + 3/8·(a0·t0 − a1·t3) set to the offset's
-    // midpoint), then the C1 fit (the arms a third of the offset's speed times the interval): the
-    // first within the tolerance is taken, else the closer.
+    // midpoint), then arms of a third of the chord (the fit of a nearly straight piece, where the
+    // midpoint's system is singular), then the C1 fit (the arms a third of the offset's speed times
+    // the interval): the first within the tolerance is taken, else the closer. An arm shorter than
+    // 1/64 of the chord is not taken: the piece's speed would nearly vanish at that end, as the
+    // offset's does at its cusps and where c' vanishes, and an element edge following such a
+    // piece has a Jacobian that nearly vanishes at its vertex.
     CubicBezier best;
     double error = std::numeric_limits<double>::infinity();
-    const auto consider = [&](const CubicBezier& candidate) {
+    const double chord = (p3 - p0).norm();
+    const auto consider = [&](double a0, double a1) {
+      if (!(a0 >= chord / 64 && a1 >= chord / 64 && a0 <= 2 * chord && a1 <= 2 * chord)) return false;
+      const CubicBezier candidate = hermite(p0, t0, a0, p3, t3, a1);
       if (const double e = distance(candidate, a, b, tolerance); e < error) best = candidate, error = e;
       return error <= tolerance;
     };
     const Vec2 r = 8.0 / 3.0 * (point((a + b) / 2) - (p0 + p3) / 2);
     const double det = cross(t3, t0);  // of the system [t0, −t3]·(a0, a1) = r
-    bool done = false;
-    if (std::abs(det) > 1e-6) {
-      const double a0 = cross(t3, r) / det, a1 = cross(r, t0) / -det;
-      const double chord = (p3 - p0).norm();
-      if (a0 >= 0 && a1 >= 0 && a0 <= 2 * chord && a1 <= 2 * chord)
-        done = consider(hermite(p0, t0, a0, p3, t3, a1));
-    }
     const double h = (b - a) / 3;
-    if (!done)
-      consider(hermite(p0, t0, h * offset_speed(c_, a, d_, lo_, hi_), p3, t3,
-                       h * offset_speed(c_, b, d_, lo_, hi_)));
-    if (error <= tolerance || depth >= kMaxDepth || fits_ >= kMaxFits) {
+    const bool done = (std::abs(det) > 1e-6 && consider(cross(t3, r) / det, cross(r, t0) / -det)) ||
+                      consider(chord / 3, chord / 3) ||
+                      consider(h * offset_speed(c_, a, d_, lo_, hi_), h * offset_speed(c_, b, d_, lo_, hi_));
+    if (!std::isfinite(error)) best = hermite(p0, t0, chord / 3, p3, t3, chord / 3);  // nothing measured
+    if (done || depth >= kMaxDepth || fits_ >= kMaxFits) {
       run_.pieces.push_back(best);
       run_.smooth.push_back(smooth);
       return;

