@@ -423,43 +423,25 @@ bool swap_edge(TriMesh& m, int a, int b, double energy_bound, int left_hint, std
   return true;
 }
 
-bool smooth_vertex(TriMesh& m, const Constraints& c, int v) {
-  const VertexTag tag = m.tag(v);
-  if (tag.kind == VertexKind::fixed || m.has_exact(v) || m.triangles_of(v).empty()) return false;
-  const Vec2 x0 = m.point(v);
-  // A star with a triangle too flat for doubles has infinite energy: then there is no Newton step,
-  // but any valid position of finite energy is better, and the fallback below looks for one.
-  const StarEnergy start = star_energy(m, v, x0);
-  const double e0 = start.sum, max0 = start.max;
-  const bool finite = std::isfinite(e0);
-  // A move is better when the summed energy decreases and the worst triangle gets no worse.
-  const auto better = [&](const Vec2& p) { return star_improves(m, v, p, e0, max0); };
-  const auto d = finite ? star_derivatives(m, v, x0) : geometry::AmipsDerivatives{};
+namespace {
 
-  if (tag.kind == VertexKind::primary) {
-    if (!tag.on_curve) return false;  // projection moves it first
-    CurveNeighbours n;
-    if (!curve_neighbours(m, v, n)) return false;
-    const SectionCurve& curve = c.sections[tag.section];
-    const double lo = std::min(n.tx, n.ty), hi = std::max(n.tx, n.ty), margin = 1e-3 * (hi - lo);
-    const auto search = [&](double dt) {
-      for (int k = 0; k < 10; ++k, dt *= 0.5) {
-        const double t = std::clamp(tag.t + dt, lo + margin, hi - margin);
-        if (t == tag.t) return false;
-        if (!better(curve.eval(t))) continue;
-        if (try_curve_move(m, c, v, n, t)) return true;
-      }
-      return false;
-    };
-    if (finite) {
-      const auto g = geometry::along_curve(d, curve.derivative(tag.t), curve.second_derivative(tag.t));
-      if (search(g.second > 0 ? -g.first / g.second : (g.first > 0 ? -0.25 : 0.25) * (hi - lo))) return true;
-    }
-    return search(0.5 * (lo + hi) - tag.t);  // towards the middle of its two curve edges
-  }
+// What the smoothing of one vertex knows before it moves it: its star's energy at x0 and the
+// derivatives there (none when that energy is infinite: a triangle too flat for doubles).
+struct SmoothingStart {
+  TriMesh& m;
+  const Constraints& c;
+  int v;
+  Vec2 x0;
+  double e0, max0;
+  bool finite;
+  geometry::AmipsDerivatives d;
+
+  // A move is better when the summed energy decreases and the worst triangle gets no worse.
+  bool better(const Vec2& p) const { return star_improves(m, v, p, e0, max0); }
 
   // The search along a step: halved until the energy decreases and every invariant holds.
-  const auto search = [&](Vec2 step, int tries, const auto& clamp) {
+  template <class Clamp>
+  bool search(Vec2 step, int tries, const Clamp& clamp) const {
     for (int k = 0; k < tries; ++k, step *= 0.5) {
       const Vec2 p = clamp(x0 + step);
       if (p == x0) return false;
@@ -468,47 +450,92 @@ bool smooth_vertex(TriMesh& m, const Constraints& c, int v) {
       return true;
     }
     return false;
-  };
-
-  if (tag.kind == VertexKind::boundary) {
-    int x = -1, y = -1;
-    if (!side_neighbours(m, v, x, y)) return false;
-    const int axis = (tag.side == 0 || tag.side == 2) ? 0 : 1;
-    const double reach = std::abs(m.point(x)[axis] - m.point(y)[axis]);
-    const double lo = std::min(m.point(x)[axis], m.point(y)[axis]), hi = std::max(m.point(x)[axis], m.point(y)[axis]);
-    const auto clamp = [&](Vec2 p) {
-      p[1 - axis] = x0[1 - axis];
-      p[axis] = std::clamp(p[axis], lo + 1e-3 * reach, hi - 1e-3 * reach);
-      return p;
-    };
-    if (finite) {
-      const double h = d.hessian(axis, axis), gr = d.gradient[axis];
-      Vec2 step = Vec2::Zero();
-      step[axis] = h > 0 ? -gr / h : (gr > 0 ? -0.25 : 0.25) * reach;
-      if (step.allFinite() && search(step, 10, clamp)) return true;
-    }
-    Vec2 step = Vec2::Zero();
-    step[axis] = 0.5 * (lo + hi) - x0[axis];
-    return search(step, 10, clamp);
   }
+};
 
-  // Free and secondary vertices: Newton in the plane; a Hessian that is not positive definite is
-  // shifted until it is. If that fails, towards the centre of the star (Laplacian smoothing).
+// A primary vertex moves along its curve, between its two curve neighbours: Newton's step on the
+// curve's parameter, then towards the middle of its two curve edges.
+bool smooth_on_curve(const SmoothingStart& s, const VertexTag& tag) {
+  if (!tag.on_curve) return false;  // projection moves it first
+  CurveNeighbours n;
+  if (!curve_neighbours(s.m, s.v, n)) return false;
+  const SectionCurve& curve = s.c.sections[tag.section];
+  const double lo = std::min(n.tx, n.ty), hi = std::max(n.tx, n.ty), margin = 1e-3 * (hi - lo);
+  const auto search = [&](double dt) {
+    for (int k = 0; k < 10; ++k, dt *= 0.5) {
+      const double t = std::clamp(tag.t + dt, lo + margin, hi - margin);
+      if (t == tag.t) return false;
+      if (!s.better(curve.eval(t))) continue;
+      if (try_curve_move(s.m, s.c, s.v, n, t)) return true;
+    }
+    return false;
+  };
+  if (s.finite) {
+    const auto g = geometry::along_curve(s.d, curve.derivative(tag.t), curve.second_derivative(tag.t));
+    if (search(g.second > 0 ? -g.first / g.second : (g.first > 0 ? -0.25 : 0.25) * (hi - lo))) return true;
+  }
+  return search(0.5 * (lo + hi) - tag.t);
+}
+
+// A vertex on a side of the box moves along it, between its two neighbours there.
+bool smooth_on_side(const SmoothingStart& s, const VertexTag& tag) {
+  const TriMesh& m = s.m;
+  int x = -1, y = -1;
+  if (!side_neighbours(m, s.v, x, y)) return false;
+  const int axis = (tag.side == 0 || tag.side == 2) ? 0 : 1;
+  const double reach = std::abs(m.point(x)[axis] - m.point(y)[axis]);
+  const double lo = std::min(m.point(x)[axis], m.point(y)[axis]), hi = std::max(m.point(x)[axis], m.point(y)[axis]);
+  const auto clamp = [&](Vec2 p) {
+    p[1 - axis] = s.x0[1 - axis];
+    p[axis] = std::clamp(p[axis], lo + 1e-3 * reach, hi - 1e-3 * reach);
+    return p;
+  };
+  if (s.finite) {
+    const double h = s.d.hessian(axis, axis), gr = s.d.gradient[axis];
+    Vec2 step = Vec2::Zero();
+    step[axis] = h > 0 ? -gr / h : (gr > 0 ? -0.25 : 0.25) * reach;
+    if (step.allFinite() && s.search(step, 10, clamp)) return true;
+  }
+  Vec2 step = Vec2::Zero();
+  step[axis] = 0.5 * (lo + hi) - s.x0[axis];
+  return s.search(step, 10, clamp);
+}
+
+// Free and secondary vertices: Newton in the plane; a Hessian that is not positive definite is
+// shifted until it is. If that fails, towards the centre of the star (Laplacian smoothing).
+bool smooth_in_plane(const SmoothingStart& s) {
   const auto same = [](const Vec2& p) { return p; };
-  if (finite) {
-    Eigen::Matrix2d h = d.hessian;
+  if (s.finite) {
+    Eigen::Matrix2d h = s.d.hessian;
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(h);
     const double smallest = eig.eigenvalues()[0], largest = eig.eigenvalues()[1];
     if (!(smallest > 1e-12 * std::max(1.0, std::abs(largest))))
       h += Eigen::Matrix2d::Identity() * (std::abs(smallest) + 1e-6 * std::max(1.0, std::abs(largest)));
-    const Vec2 step = -h.ldlt().solve(d.gradient);
-    if (step.allFinite() && search(step, 12, same)) return true;
+    const Vec2 step = -h.ldlt().solve(s.d.gradient);
+    if (step.allFinite() && s.search(step, 12, same)) return true;
   }
   Vec2 centre = Vec2::Zero();
-  const auto ring = m.neighbours(v);
-  for (int w : ring) centre += m.point(w);
+  const auto ring = s.m.neighbours(s.v);
+  for (int w : ring) centre += s.m.point(w);
   centre /= static_cast<double>(ring.size());
-  return search(Vec2(centre - x0), 8, same);
+  return s.search(Vec2(centre - s.x0), 8, same);
+}
+
+}  // namespace
+
+bool smooth_vertex(TriMesh& m, const Constraints& c, int v) {
+  const VertexTag tag = m.tag(v);
+  if (tag.kind == VertexKind::fixed || m.has_exact(v) || m.triangles_of(v).empty()) return false;
+  const Vec2 x0 = m.point(v);
+  // A star with a triangle too flat for doubles has infinite energy: then there is no Newton step,
+  // but any valid position of finite energy is better, and the fallback looks for one.
+  const StarEnergy start = star_energy(m, v, x0);
+  const bool finite = std::isfinite(start.sum);
+  const SmoothingStart s{m, c, v, x0, start.sum, start.max, finite,
+                         finite ? star_derivatives(m, v, x0) : geometry::AmipsDerivatives{}};
+  if (tag.kind == VertexKind::primary) return smooth_on_curve(s, tag);
+  if (tag.kind == VertexKind::boundary) return smooth_on_side(s, tag);
+  return smooth_in_plane(s);
 }
 
 bool project_vertex(TriMesh& m, const Constraints& c, int v, double energy_bound) {
