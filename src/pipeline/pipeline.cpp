@@ -164,6 +164,18 @@ bool reads_paint(const Parameters& p) {
 
 // The faces of the finished mesh, the fills over them and the part given out (Parameters'
 // regions and domain).
+// Why a domain came out empty. A drawing with strokes can still leave its painted domain empty:
+// where a stroke is narrower than the features stage keeps apart (mu), its two sides are merged and
+// no face lies between them.
+std::string empty_domain_reason(Domain domain, bool has_strokes) {
+  if (domain == Domain::evenodd) return "no part of the box is enclosed by its curves";
+  if (domain == Domain::filled) return "nothing of the drawing is filled";
+  if (has_strokes)
+    return "nothing of the drawing is filled, and its strokes are narrower than the mesh resolves: their sides lie "
+           "within --mu of one another; try a smaller --mu and --epsilon";
+  return "nothing of the drawing is filled or stroked";
+}
+
 void paint(Result& r, const std::function<void(const std::string&)>& warn) {
   const Parameters& o = r.parameters;
   if (!o.regions && o.domain == Domain::box) return;
@@ -191,12 +203,12 @@ void paint(Result& r, const std::function<void(const std::string&)>& warn) {
   }
   r.painted = regions::paint(whole, r.classification, r.soup, o.domain, o.regions);
   const regions::Painted& p = *r.painted;
-  if (p.mesh.triangle_count() == 0)
+  if (p.mesh.triangle_count() == 0) {
+    const bool strokes =
+        std::any_of(r.soup.fills.begin(), r.soup.fills.end(), [](const auto& layer) { return layer.stroke; });
     throw invalid(r.name + ": the domain '" + regions::domain_name(o.domain) + "' is empty (" +
-                  (o.domain == Domain::filled    ? "nothing of the drawing is filled"
-                   : o.domain == Domain::painted ? "nothing of the drawing is filled or stroked"
-                                                 : "no part of the box is enclosed by its curves") +
-                  ")");
+                  empty_domain_reason(o.domain, strokes) + ")");
+  }
   Json& stats = r.stats;
   stats["domain"] = {{"name", regions::domain_name(o.domain)},
                      {"faces", r.classification.faces.count()},

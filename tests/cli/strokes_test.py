@@ -139,6 +139,19 @@ with open(plain + ".msh", "rb") as a, open(lines + ".msh", "rb") as b:
 check("--strokes lines has no stroke region", not any(x["name"].endswith(".stroke") for x in stats4.get("regions", [])),
       stats4.get("regions"))
 
+# A hairline (0.1 wide in a drawing 100 across, below mu = 0.001 d): its two sides lie within mu of
+# one another and no face is left between them; the message says so, not that nothing is stroked.
+hairline = os.path.join(tmp.name, "hairline.svg")
+with open(hairline, "w") as f:
+    f.write('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">'
+            '<path d="M10 10 L90 20 L50 90 Z" fill="none" stroke="black" stroke-width="0.1"/></svg>')
+r7 = run("mesh", hairline, "-o", os.path.join(tmp.name, "hairline.msh"), "--domain", "painted")
+check("a hairline's painted domain: exit 1, naming --mu rather than a drawing without strokes",
+      r7.returncode == 1 and "--mu" in r7.stderr and "filled or stroked" not in r7.stderr, r7.stderr)
+r8 = run("mesh", hairline, "-o", os.path.join(tmp.name, "hairline-fine.msh"), "--domain", "painted",
+         "--mu", "0.0002", "--epsilon", "0.0004")
+check("the same hairline with a finer envelope meshes", r8.returncode == 0, r8.stderr[-800:])
+
 r5 = run("mesh", icon, "-o", os.path.join(tmp.name, "bad.msh"), "--strokes", "wide")
 check("--strokes refuses another value", r5.returncode == 2, r5.stderr)
 
