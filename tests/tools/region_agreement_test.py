@@ -1,7 +1,8 @@
 """Tests of scripts/region-agreement that need no curvemesh: the document copy, the pixel mapping
 (through rsvg-convert), the PNG reader, the comparison, the reading of curvemesh's outputs (on
 hand-written files in the format curvemesh --regions is to write), and the whole command with a
-fake curvemesh.
+fake curvemesh; for --painted, the style that keeps strokes, the exact areas of curved triangles,
+the coverage arithmetic and its summary and exit status.
 
     /usr/bin/python3 -m pytest tests/tools/region_agreement_test.py
 
