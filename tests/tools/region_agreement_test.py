@@ -1,7 +1,8 @@
 """Tests of scripts/region-agreement that need no curvemesh: the document copy, the pixel mapping
 (through rsvg-convert), the PNG reader, the comparison, the reading of curvemesh's outputs (on
 hand-written files in the format curvemesh --regions is to write), and the whole command with a
-fake curvemesh.
+fake curvemesh; for --painted, the style that keeps strokes, the exact areas of curved triangles,
+the coverage arithmetic and its summary and exit status.
 
     /usr/bin/python3 -m pytest tests/tools/region_agreement_test.py
 
@@ -447,11 +448,13 @@ def write_msh41(path, points, triangles, physical, lines=(), names=None):
         f.write("\n".join(out))
 
 
-def write_fake_outputs(msh, stats, rects, box, cell=10.0, linear=False, regions=None):
+def write_fake_outputs(msh, stats, rects, box, cell=10.0, linear=False, regions=None, painted_only=False):
     """What `curvemesh mesh --regions --stats` is to write, for a drawing of axis-aligned
     rectangles [(x0, y0, x1, y1, fill), ...] (the later on top) whose edges are on the grid of
     `cell`: a grid of the box, each square two triangles, each tagged with the region at its
-    centre (physical 1 "background", then 2, 3, ... for the rects), and a few line elements."""
+    centre (physical 1 "background", then 2, 3, ... for the rects), and a few line elements.
+    painted_only: the triangles of the rects alone (what --domain painted meshes); stats None: no
+    statistics."""
     x0, y0, x1, y1 = box
     nx, ny = int(round((x1 - x0) / cell)), int(round((y1 - y0) / cell))
     points, cells, tags = [], [], []
@@ -464,6 +467,8 @@ def write_fake_outputs(msh, stats, rects, box, cell=10.0, linear=False, regions=
                 for k, (a, b, c, d, _) in enumerate(rects):
                     if a < centre[0] < c and b < centre[1] < d:
                         physical = 2 + k
+                if painted_only and physical == 1:
+                    continue
                 nodes = [np.asarray(v, float) for v in tri] if linear else triangle10(*tri)
                 cells.append(list(range(len(points), len(points) + len(nodes))))
                 points.extend(tuple(float(c) for c in v) for v in nodes)
@@ -476,8 +481,9 @@ def write_fake_outputs(msh, stats, rects, box, cell=10.0, linear=False, regions=
         entry.setdefault("triangles", tags.count(entry["physical"]))
         entry.setdefault("area", 0.0)
     write_msh41(msh, points, cells, tags, lines, {e["physical"]: e["name"] for e in regions})
-    with open(stats, "w") as f:
-        json.dump({"mesh": {"triangles": len(tags)}, "regions": regions}, f)
+    if stats is not None:
+        with open(stats, "w") as f:
+            json.dump({"mesh": {"triangles": len(tags)}, "regions": regions}, f)
 
 
 RECT_SVG = f"""<?xml version="1.0"?>
@@ -530,11 +536,14 @@ sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, {tests!r})
 import region_agreement_test as t
 args = sys.argv[1:]
-assert args[0] == "mesh" and "--regions" in args, args
-drawing, msh, stats = args[1], args[args.index("-o") + 1], args[args.index("--stats") + 1]
+assert args[0] == "mesh" and ("--regions" in args or "--domain" in args), args
+drawing, msh = args[1], args[args.index("-o") + 1]
+stats = args[args.index("--stats") + 1] if "--stats" in args else None
 mode = {mode!r}
 if mode == "fail" or "broken" in drawing:
     sys.exit("curvemesh: " + drawing + ": no mesh")
+if mode.startswith("painted"):
+    sys.exit(t.write_painted_fake(args, mode))
 regions = None
 if mode == "wrong":
     regions = [dict(physical=1, name="background", fill="none"), dict(physical=2, name="rect0", fill="#ff0000"),
@@ -615,3 +624,201 @@ def test_summary_fraction():
     assert not ra.summarize([records[-1]], 0.99, 0.0, out=io.StringIO())
     assert ra.summarize(records, 0.99, 0.95, out=io.StringIO(), max_failed=1)
     assert not ra.summarize(records, 0.99, 0.95, out=io.StringIO(), max_failed=0)
+
+
+# ------------------------------------------------------------------------------------------------
+# --painted: strokes kept, the painted area
+
+
+def test_painted_css_is_the_injected_one_with_strokes_on():
+    # The same switches as the default style but `stroke: none`, and stroke- and stop-opacity too.
+    declarations = lambda css: {d.strip() for d in css.replace("{", ";").replace("}", ";").split(";")}  # noqa: E731
+    default, painted = declarations(ra.INJECTED_CSS), declarations(ra.PAINTED_CSS)
+    assert default - painted == {"stroke: none !important"}
+    assert painted - default == {"stroke-opacity: 1 !important", "stop-opacity: 1 !important"}
+
+
+def render_painted(tmp_path, body, size=200):
+    need_rsvg()
+    document = f'<svg xmlns="{SVG_NS}" width="100" height="100">{body}</svg>'
+    copy = tmp_path / "painted.svg"
+    copy.write_bytes(ra.prepare_document(document.encode(), (0, 0, 100, 100), (size, size), ra.PAINTED_CSS))
+    return ra.render(str(copy), str(tmp_path / "painted.png"))
+
+
+@pytest.mark.parametrize("style", ['stroke="#ff0000" stroke-opacity="0.4" opacity="0.5"',
+                                   'style="stroke:#ff0000;stroke-opacity:0.4"',
+                                   'class="s"'])
+def test_painted_css_keeps_strokes_opaque(tmp_path, style):
+    sheet = "<style>.s { stroke: #ff0000; stroke-opacity: 0.3 }</style>" if "class" in style else ""
+    image = render_painted(tmp_path, f'{sheet}<rect {GREEN} fill="#00ff00" fill-opacity="0.5" '
+                                     f'stroke-width="20" {style}/>')
+    box = (0, 0, 100, 100)
+    # the stroke straddles the edge x = 20 (10..30), over the fill inside; the fill in the middle
+    assert [colour_at(image, box, p) for p in [(12, 50), (28, 50), (50, 50), (5, 50)]] == \
+        ["#ff0000", "#ff0000", "#00ff00", "transparent"]
+
+
+@pytest.mark.parametrize("name,body,probes", [c for c in CASES if not c[0].startswith("stroke")],
+                         ids=[c[0] for c in CASES if not c[0].startswith("stroke")])
+def test_painted_css_still_switches_the_rest_off(tmp_path, name, body, probes):
+    image = render_painted(tmp_path, body)
+    assert [colour_at(image, (0, 0, 100, 100), p) for p, _ in probes] == [c for _, c in probes]
+
+
+def test_painted_css_makes_gradient_stops_opaque(tmp_path):
+    image = render_painted(tmp_path, '<linearGradient id="g"><stop offset="0" stop-color="#0000ff" stop-opacity="0"/>'
+                                     '<stop offset="1" stop-color="#0000ff" stop-opacity="0.2"/></linearGradient>'
+                                     f'<rect {GREEN} fill="url(#g)"/>')
+    assert (image[45:155, 45:155, 3] == 255).all()
+
+
+def test_triangle_areas_are_exact_for_cubic_edges():
+    a, b, c = (0.0, 0.0), (2.0, 0.0), (0.0, 1.0)
+    straight = np.array(triangle10(a, b, c))
+    cells = [list(range(10))]
+    assert np.allclose(ra.triangle_areas(straight, cells), [1.0])
+    # Edge a-b bent to y = -h t (1 - t) (1 + t) (x = 2t): a cubic, adding 2 h / 4 of area.
+    h, bent = 0.3, straight.copy()
+    bent[3] = (2 / 3, -h * (1 / 3) * (2 / 3) * (4 / 3))
+    bent[4] = (4 / 3, -h * (2 / 3) * (1 / 3) * (5 / 3))
+    bent[9] += (0.05, -0.07)  # the interior node does not change the area
+    assert ra.triangle_areas(bent, cells)[0] == pytest.approx(1.0 + 2 * h / 4, rel=1e-14)
+    # A quadratic bulge along x = 2t in 3-node, 6-node and reversed orientation.
+    six = np.array([a, b, c, (1.0, -0.5), (1.0, 0.5), (0.0, 0.5)])
+    assert ra.triangle_areas(six, [list(range(6))])[0] == pytest.approx(1.0 + 2 * 4 * 0.5 / 6)
+    assert np.allclose(ra.triangle_areas(six[:3], [[0, 1, 2], [0, 2, 1]]), [1.0, -1.0])
+    with pytest.raises(ValueError):
+        ra.triangle_areas(six, [[0, 1, 2, 3]])
+
+
+def test_read_mesh_area(tmp_path):
+    box = (0.0, 0.0, 30.0, 20.0)
+    for linear in (False, True):
+        msh = str(tmp_path / f"p{linear}.msh")
+        write_fake_outputs(msh, None, [(10, 0, 20, 10, "#ff0000")], box, linear=linear, painted_only=True)
+        area, triangles, extent = ra.read_mesh_area(msh)
+        assert triangles == 2 and area == pytest.approx(100.0) and extent == (10.0, 0.0, 20.0, 10.0)
+
+
+def test_painted_area_and_coverage():
+    image = np.zeros((4, 10, 4), np.uint8)
+    image[0, :, 3] = 255   # one full row: 10 pixels
+    image[1, :4, 3] = 51   # 4 pixels at 0.2
+    box = (-1.0, 2.0, 4.0, 10.0)  # a pixel is 0.5 x 2 units
+    assert ra.painted_area(image, box) == pytest.approx((10 + 0.8) * 1.0)
+    c = ra.coverage(10.8 * 1.004, 10.8)
+    assert c["relative_difference"] == pytest.approx(0.004) and c["matches"]
+    c = ra.coverage(10.8 * 0.994, 10.8)
+    assert c["relative_difference"] == pytest.approx(-0.006) and not c["matches"]
+    assert ra.coverage(10.8 * 0.994, 10.8, max_error=0.01)["matches"]
+    assert ra.coverage(0.0, 0.0) == {"mesh_area": 0.0, "rendered_area": 0.0, "relative_difference": 0.0,
+                                     "matches": True}
+    assert not ra.coverage(1.0, 0.0)["matches"] and ra.coverage(1.0, 0.0)["relative_difference"] is None
+    assert ra.coverage(0.0, 2.0)["relative_difference"] == -1.0
+
+
+# The painted drawing: a red square under a black stroke 4 wide (the stroke 10..40, the fill seen
+# 14..36) at half stroke-opacity, and a blue one at fill-opacity 0.3 (both forced to 1).
+PAINTED_SVG = f"""<svg xmlns="{SVG_NS}" width="300" height="150" viewBox="0 0 100 50">
+  <rect x="12" y="12" width="26" height="26" fill="#ff0000" stroke="#000" stroke-width="4" stroke-opacity="0.5"/>
+  <rect x="60" y="10" width="30" height="30" style="fill:#0000ff;fill-opacity:0.3"/>
+</svg>
+"""
+PAINTED_RECTS = [(10, 10, 40, 40, "#000000"), (14, 14, 36, 36, "#ff0000"), (60, 10, 90, 40, "#0000ff")]
+PAINTED_NAMES = ["background", "rect0.stroke", "rect0", "rect1"]
+
+
+def write_painted_fake(args, mode):
+    """The fake curvemesh of --painted: the regions mesh (--strokes areas), or the painted domain
+    (mode painted-short: without the blue square; painted-empty: curvemesh's empty domain)."""
+    msh = args[args.index("-o") + 1]
+    if "--domain" not in args:
+        assert args[args.index("--strokes") + 1] == "areas", args
+        stats = args[args.index("--stats") + 1]
+        regions = [dict(physical=1 + k, name=n, fill=f) for k, (n, f) in
+                   enumerate(zip(PAINTED_NAMES, ["none"] + [r[4] for r in PAINTED_RECTS]))]
+        write_fake_outputs(msh, stats, PAINTED_RECTS, BOX, cell=2.0, regions=regions)
+        return 0
+    assert args[args.index("--domain") + 1] == "painted" and "--regions" not in args, args
+    if mode == "painted-empty":
+        print("curvemesh: x.svg: the domain 'painted' is empty (nothing of the drawing is filled or stroked)",
+              file=sys.stderr)
+        return 1
+    rects = PAINTED_RECTS[:2] if mode == "painted-short" else PAINTED_RECTS
+    write_fake_outputs(msh, None, rects, BOX, cell=2.0, painted_only=True)
+    return 0
+
+
+def test_check_drawing_painted_with_fake_outputs(tmp_path):
+    need_rsvg()
+    drawing = tmp_path / "painted.svg"
+    drawing.write_text(PAINTED_SVG)
+    job = dict(index=0, path=str(drawing), curvemesh=fake_curvemesh(tmp_path, "painted"), timeout=60, size=600,
+               radius=2, tolerance=2, keep=None, linear=False, painted=True, max_area_error=0.005)
+    record = ra.check_drawing(job)
+    assert record["status"] == "ok", record
+    assert record["compared"] == record["triangles"] == 2 * 60 * 35 and record["agreement"] == 1.0
+    p = record["painted"]
+    assert p["rendered_area"] == pytest.approx(1800.0) and p["mesh_area"] == pytest.approx(1800.0)
+    assert abs(p["relative_difference"]) < 1e-9 and p["matches"] and p["triangles"] == 2 * 2 * 15 * 15
+    assert p["outside_box"] is False
+    # Without --painted the stroke is not painted: its ring shows the red fill or nothing.
+    def reader(msh, stats):
+        write_painted_fake(["mesh", "x.svg", "-o", msh, "--stats", stats, "--strokes", "areas"], "painted")
+        return ra.read_regions(msh, stats)
+
+    job.update(painted=False, curvemesh="/bin/true", reader=reader)
+    record = ra.check_drawing(job)
+    assert record["status"] == "ok" and "painted" not in record
+    assert {d["region"] for d in record["disagreements"]} == {"rect0.stroke"}
+
+
+def test_command_painted(tmp_path):
+    need_rsvg()
+    drawing = tmp_path / "painted.svg"
+    drawing.write_text(PAINTED_SVG)
+    out = tmp_path / "out.json"
+    r = run_script("--curvemesh", fake_curvemesh(tmp_path, "painted"), "--painted", "--json", str(out), str(drawing))
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "painted area within 0.5 %: 1 of 1 drawings (100.0 %, required 95.0 %)" in r.stdout
+    data = json.loads(out.read_text())
+    assert data["painted"] is True and data["max_area_error"] == 0.005
+    assert data["drawings"][0]["painted"]["matches"] is True
+    # The blue square missing from the painted domain: half the area, agreement still perfect.
+    r = run_script("--curvemesh", fake_curvemesh(tmp_path, "painted-short"), "--painted", "--json", str(out),
+                   str(drawing))
+    assert r.returncode == 1 and "painted area within 0.5 %: 0 of 1" in r.stdout and "-50.00" in r.stdout
+    assert "agreement >= 0.99: 1 of 1" in r.stdout and "FAIL" in r.stdout
+    assert json.loads(out.read_text())["drawings"][0]["painted"]["relative_difference"] == pytest.approx(-0.5, abs=1e-3)
+    r = run_script("--curvemesh", fake_curvemesh(tmp_path, "painted-short"), "--painted", "--max-area-error", "0.6",
+                   str(drawing))
+    assert r.returncode == 0, r.stdout + r.stderr
+    # An empty painted domain against a painted rendering: off by -100 %, not a failed mesh.
+    r = run_script("--curvemesh", fake_curvemesh(tmp_path, "painted-empty"), "--painted", "--json", str(out),
+                   str(drawing))
+    assert r.returncode == 1 and "-100.000 %" in r.stdout
+    (record,) = json.loads(out.read_text())["drawings"]
+    assert record["status"] == "ok" and record["painted"]["triangles"] == 0
+    assert run_script("--curvemesh", "/bin/true", "--max-area-error", "0.1", "x.svg").returncode == 2
+
+
+def test_summary_painted():
+    def rec(agreement, difference):
+        painted = {"mesh_area": 1.0 + difference, "rendered_area": 1.0, "relative_difference": difference,
+                   "matches": abs(difference) <= 0.005}
+        return {"path": "p", "status": "ok", "triangles": 10, "compared": 10, "agreeing": int(agreement * 10),
+                "agreement": agreement, "disagreements": [], "painted": painted}
+
+    import io
+    good = [rec(1.0, 0.001)] * 19
+    assert ra.summarize(good + [rec(1.0, 0.02)], 0.99, 0.95, out=io.StringIO(), max_area_error=0.005)
+    out = io.StringIO()
+    assert not ra.summarize(good + [rec(1.0, 0.02)] * 2, 0.99, 0.95, out=out, max_area_error=0.005)
+    assert "painted area within 0.5 %: 19 of 21 drawings (90.5 %" in out.getvalue()
+    assert "+2.000 % (mesh 1.02, rendered 1)  p" in out.getvalue()
+    # the agreement alone still decides too, and without max_area_error areas are not looked at
+    assert not ra.summarize(good + [rec(0.5, 0.0)] * 2, 0.99, 0.95, out=io.StringIO(), max_area_error=0.005)
+    out = io.StringIO()
+    assert ra.summarize(good + [rec(1.0, 0.02)] * 2, 0.99, 0.95, out=out)
+    assert "painted" not in out.getvalue()
