@@ -214,6 +214,8 @@ class Outliner {
               double room, bool continues) const;
   void corner(Chain& chain, const Vec2& p, const Vec2& in, const Vec2& out, const Vec2& to,
               double room) const;
+  bool meet_inside(CubicBezier& last, CubicBezier& next, const Vec2& in, const Vec2& out) const;
+  bool straight(const CubicBezier& c) const;
   void cap(Chain& chain, const Vec2& p, const Vec2& direction, const Vec2& to) const;
   void arc(Chain& chain, const Vec2& centre, const Vec2& to, double sweep) const;
   void dot(const Vec2& p, std::vector<Subpath>& out) const;
@@ -326,6 +328,35 @@ void Outliner::cap(Chain& chain, const Vec2& p, const Vec2& direction, const Vec
   }
 }
 
+// Whether c is a straight piece: its inner control points within the tolerance of its chord.
+bool Outliner::straight(const CubicBezier& c) const {
+  const Vec2 chord = c.p[3] - c.p[0];
+  const double length = chord.norm();
+  return length > 0 && std::abs(cross(chord, c.p[1] - c.p[0])) <= tolerance_ * length &&
+         std::abs(cross(chord, c.p[2] - c.p[0])) <= tolerance_ * length;
+}
+
+// At a corner turning towards this side (in × out > 0), two straight offset pieces cross inside
+// the band: `last` ends and `next` starts past the point q where their lines meet. Cut back to q,
+// the loop no longer runs on to the corner and back (that notch lies inside both segments' bands:
+// the triangles (q, end, corner) and (q, corner, start) each between its segment and its offset),
+// and the outline's inner corner is the painted area's own, q, instead of a notch of half the
+// width that feature processing would see as a cluster of short pieces. False, and nothing
+// changed, unless both are straight and q lies strictly inside both.
+bool Outliner::meet_inside(CubicBezier& last, CubicBezier& next, const Vec2& in, const Vec2& out) const {
+  if (!(cross(in, out) > 0) || !straight(last) || !straight(next)) return false;
+  const Vec2 u = last.p[3] - last.p[0], v = next.p[3] - next.p[0];
+  const double det = cross(u, v);
+  if (!(std::abs(det) > 1e-9 * u.norm() * v.norm())) return false;
+  const double s = cross(next.p[0] - last.p[0], v) / det;  // q = last.p0 + s·u
+  const double r = cross(next.p[0] - last.p[0], u) / det;  // q = next.p0 + r·v
+  if (!(s > 0 && s < 1 && r > 0 && r < 1)) return false;
+  const Vec2 q = last.p[0] + s * u;
+  last = CubicBezier::line(last.p[0], q);
+  next = CubicBezier::line(q, next.p[3]);
+  return true;
+}
+
 // Appends one offset run after a corner at p (or at a cusp of the curve): the pieces continue the
 // chain directly when its end is within the tolerance of their start (a smooth joint).
 void Outliner::append(Chain& chain, const geometry::OffsetRun& run, const Vec2& p, const Vec2& in,
@@ -338,7 +369,7 @@ void Outliner::append(Chain& chain, const geometry::OffsetRun& run, const Vec2& 
       pieces.front().p[1] += from - pieces.front().p[0];
       pieces.front().p[0] = from;
       first_continues = continues;
-    } else {
+    } else if (!meet_inside(chain.curves.back(), pieces.front(), in, out)) {
       corner(chain, p, in, out, pieces.front().p[0], room);
     }
   }
@@ -371,6 +402,8 @@ Chain Outliner::side(const std::vector<CubicBezier>& segments, const std::vector
       CubicBezier& last = chain.curves.back();
       last.p[2] += start - last.p[3];
       last.p[3] = start;
+    } else if (meet_inside(chain.curves.back(), chain.curves.front(), in, first_out)) {
+      chain.continues.front() = false;
     } else {
       corner(chain, segments.front().p[0], in, first_out, start,
              std::min(chord(0), chord(segments.size() - 1)));

@@ -52,7 +52,8 @@ std::vector<Subpath> dash_subpaths(const std::vector<Subpath>& subpaths, const s
 // joins all round and no caps. At a corner the outer side gets the join (a miter beyond
 // style.miter_limit is bevelled, as SVG says) and the inner side runs to the corner point and back,
 // so that the loop is the sum of each segment's band and each join's wedge (or straight across,
-// where that adds only a triangle inside both bands). A cusp of a curve
+// where that adds only a triangle inside both bands); where both inner sides are straight and cross
+// inside both, they end where they meet, the painted area's own inner corner. A cusp of a curve
 // (where it turns back on itself) is joined as a corner of 180°. A closed path bending tighter than
 // the half width towards one side all round keeps only its other side's loop (the inside is all
 // painted). A subpath of no length paints a dot

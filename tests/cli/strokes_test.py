@@ -139,6 +139,22 @@ with open(plain + ".msh", "rb") as a, open(lines + ".msh", "rb") as b:
 check("--strokes lines has no stroke region", not any(x["name"].endswith(".stroke") for x in stats4.get("regions", [])),
       stats4.get("regions"))
 
+# A mitred rectangle outline: its painted area is exactly 2·(132 + 96) = 456, corners included. The
+# inner sides meet at the inner corners (no notch to the path's corner inside the band), so the mesh's
+# border follows the inner rectangle exactly instead of a chord across each corner.
+rect = os.path.join(tmp.name, "rect.svg")
+with open(rect, "w") as f:
+    f.write('<svg xmlns="http://www.w3.org/2000/svg" viewBox="210 -5 145 105">'
+            '<rect x="216" y="0" width="132" height="96" fill="none" stroke="#000"/></svg>')
+rect_stats = os.path.join(tmp.name, "rect.json")
+r9 = run("mesh", rect, "-o", os.path.join(tmp.name, "rect.msh"), "--domain", "painted", "--regions", "--stats", rect_stats)
+rect_area = None
+if r9.returncode == 0:
+    with open(rect_stats) as f:
+        rect_area = sum(x["area"] for x in json.load(f)["regions"])
+check("a mitred rectangle's painted area is 456 (within 1e-9)", rect_area is not None and abs(rect_area - 456) < 456e-9,
+      (rect_area, r9.stderr[-500:]))
+
 # A hairline (0.1 wide in a drawing 100 across, below mu = 0.001 d): its two sides lie within mu of
 # one another and no face is left between them; the message says so, not that nothing is stroked.
 hairline = os.path.join(tmp.name, "hairline.svg")

@@ -353,27 +353,30 @@ TEST(StrokeOutline, MiterLengthAndItsLimit) {
 
 TEST(StrokeOutline, JoinsAddTheirWedgesToTheArea) {
   // An L of two legs of 10: bands of 10·w each, sharing the square [10 − d, 10]×[0, d] inside the
-  // corner (where the winding number is 2, so the signed area counts it twice), and the outer
-  // wedge: a triangle (bevel), a square (miter: a right angle is within the limit), a quarter disc.
+  // corner, and the outer wedge: a triangle (bevel), a square (miter: a right angle is within the
+  // limit), a quarter disc. The inner sides meet at the shared square's corner, so the loop is the
+  // painted area's boundary and its signed area counts the square once.
   const double w = 2, d = 1;
   const auto l = path("M 0 0 L 10 0 L 10 10");
-  const double bands = 2 * 10 * w;
+  const double bands = 2 * 10 * w - d * d;
   const auto area = [&](svg::LineJoin join) {
     return total_area(svg::stroke_outline(l, style(w, join, svg::LineCap::butt)));
   };
   EXPECT_NEAR(area(svg::LineJoin::bevel), bands + d * d / 2, 1e-9);
   EXPECT_NEAR(area(svg::LineJoin::miter), bands + d * d, 1e-9);
   EXPECT_NEAR(area(svg::LineJoin::round), bands + kPi * d * d / 4, 1e-8);
+  // The inner side has no point of the corner's notch: it turns at (10 − d, d).
+  for (const svg::Subpath& loop : svg::stroke_outline(l, style(w, svg::LineJoin::miter, svg::LineCap::butt)))
+    for (const CubicBezier& c : loop.segments) EXPECT_NE(c.p[3], Vec2(10, 0));
 }
 
 TEST(StrokeOutline, ClosedSubpathHasTwoLoopsAndNoCaps) {
   const auto loops = svg::stroke_outline(path("M 0 0 L 10 0 L 10 10 L 0 10 Z"),
                                          style(2, svg::LineJoin::miter, svg::LineCap::round));
   ASSERT_EQ(loops.size(), 2u);
-  // The square ring from [−1, 11]² (mitred corners) to [1, 9]², and the four d×d squares inside the
-  // corners, where the bands of both sides meet, counted twice (winding number 2).
-  const double d = 1;
-  EXPECT_NEAR(std::abs(signed_area(loops[0]) + signed_area(loops[1])), 12 * 12 - 8 * 8 + 4 * d * d, 1e-9);
+  // The square ring from [−1, 11]² (mitred corners) to [1, 9]²: the inner sides meet at the inner
+  // square's corners, so the loops bound the painted ring and count it once.
+  EXPECT_NEAR(std::abs(signed_area(loops[0]) + signed_area(loops[1])), 12 * 12 - 8 * 8, 1e-9);
 }
 
 TEST(StrokeOutline, CircleRingAreaAndDotOfAZeroLengthSubpath) {
