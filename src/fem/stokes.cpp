@@ -122,23 +122,16 @@ std::vector<int> dependent_pressures(const SparseMatrix& b, const Dirichlet& dir
   return out;
 }
 
-}  // namespace
+// The saddle-point system of Stokes flow, [[A, Bᵀ], [B, 0]], and its block B.
+struct StokesSystem {
+  SparseMatrix a, b;
+};
 
-StokesResult stokes(const Geometry& geometry, const Space& velocity, const Space& pressure,
-                    const std::vector<VelocityCondition>& conditions, const StokesOptions& options) {
-  if (velocity.degree() != 2 || pressure.degree() != 1)
-    throw std::invalid_argument("Stokes flow takes P2 velocity and P1 pressure (Taylor-Hood)");
-  if (!(options.viscosity > 0) || !std::isfinite(options.viscosity))
-    throw std::invalid_argument("the viscosity must be positive and finite");
-  if (options.dense_group_limit < 0) throw std::invalid_argument("dense_group_limit must not be negative");
-  using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
+// Unknowns: velocity (x, y) of P2 unknown i at 2i, 2i + 1, then the pressures from 2 nv on.
+// B (np × 2 nv): B(j, 2i + c) = −∫ ψj ∂φi/∂xc.
+StokesSystem assemble_stokes(const Geometry& geometry, const Space& velocity, const Space& pressure, double mu) {
   const int nv = velocity.size(), np = pressure.size();
   const int size = 2 * nv + np;
-  const double mu = options.viscosity;
-
-  // Unknowns: velocity (x, y) of P2 unknown i at 2i, 2i + 1, then the pressures from 2 nv on.
-  // B (np × 2 nv): B(j, 2i + c) = −∫ ψj ∂φi/∂xc.
   const Quadrature q = triangle_quadrature(quadrature_degree(geometry, velocity));
   std::vector<Eigen::VectorXd> psi;  // P1 values at the quadrature points (no geometry needed)
   for (const Vec2& xi : q.points) psi.push_back(pressure.basis().values(xi));
@@ -169,19 +162,24 @@ StokesResult stokes(const Geometry& geometry, const Space& velocity, const Space
         for (int c = 0; c < 2; ++c)
           divergence_triplets.emplace_back(dp[j], 2 * dv[i] + c, divergence(j, 2 * i + c));
   }
-  SparseMatrix b(np, 2 * nv);
-  b.setFromTriplets(divergence_triplets.begin(), divergence_triplets.end());
+  StokesSystem out;
+  out.b = SparseMatrix(np, 2 * nv);
+  out.b.setFromTriplets(divergence_triplets.begin(), divergence_triplets.end());
   Triplets triplets = std::move(viscous_triplets);
-  triplets.reserve(triplets.size() + 2 * b.nonZeros());
-  for (int col = 0; col < b.outerSize(); ++col)
-    for (SparseMatrix::InnerIterator it(b, col); it; ++it) {
+  triplets.reserve(triplets.size() + 2 * out.b.nonZeros());
+  for (int col = 0; col < out.b.outerSize(); ++col)
+    for (SparseMatrix::InnerIterator it(out.b, col); it; ++it) {
       triplets.emplace_back(2 * nv + it.row(), col, it.value());
       triplets.emplace_back(col, 2 * nv + it.row(), it.value());
     }
-  SparseMatrix a(size, size);
-  a.setFromTriplets(triplets.begin(), triplets.end());
+  out.a = SparseMatrix(size, size);
+  out.a.setFromTriplets(triplets.begin(), triplets.end());
+  return out;
+}
 
-  Dirichlet dirichlet(size);
+// The velocities the conditions prescribe, at the P2 unknowns of their edges.
+void set_velocities(const Geometry& geometry, const Space& velocity, const std::vector<VelocityCondition>& conditions,
+                    Dirichlet& dirichlet) {
   for (const VelocityCondition& condition : conditions)
     for (const auto& [t, e] : condition.edges) {
       const auto d = velocity.dofs(t);
@@ -191,6 +189,28 @@ StokesResult stokes(const Geometry& geometry, const Space& velocity, const Space
         dirichlet.set(2 * d[i] + 1, u.y());
       }
     }
+}
+
+}  // namespace
+
+StokesResult stokes(const Geometry& geometry, const Space& velocity, const Space& pressure,
+                    const std::vector<VelocityCondition>& conditions, const StokesOptions& options) {
+  if (velocity.degree() != 2 || pressure.degree() != 1)
+    throw std::invalid_argument("Stokes flow takes P2 velocity and P1 pressure (Taylor-Hood)");
+  if (!(options.viscosity > 0) || !std::isfinite(options.viscosity))
+    throw std::invalid_argument("the viscosity must be positive and finite");
+  if (options.dense_group_limit < 0) throw std::invalid_argument("dense_group_limit must not be negative");
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  const int nv = velocity.size(), np = pressure.size();
+  const int size = 2 * nv + np;
+  const double mu = options.viscosity;
+
+  const StokesSystem system = assemble_stokes(geometry, velocity, pressure, mu);
+  const SparseMatrix& a = system.a;
+  const SparseMatrix& b = system.b;
+  Dirichlet dirichlet(size);
+  set_velocities(geometry, velocity, conditions, dirichlet);
   StokesResult r;
   r.velocity_unknowns = 2 * nv;
   r.pressure_unknowns = np;
