@@ -50,12 +50,14 @@ double cusp_sign_value(const CubicBezier& c, double t, double d) {
 // and of the normal's direction, c' computed with an absolute error of a few units of the control
 // polygon's size and divided by |c'| (which vanishes at a cusp of the curve). A fit is asked to be
 // no closer to the offset than this: it cannot be told apart from the exact offset any closer.
+// The normal's part is at most the whole turn of a unit vector, 2|d| (where c' vanishes at a sample).
 double rounding_reach(const CubicBezier& c, double d, double a, double b) {
   double slowest = std::numeric_limits<double>::infinity();
   for (int k = 1; k < 16; ++k) slowest = std::min(slowest, c.derivative(a + (b - a) * k / 16).norm());
   const double size = polygon_length(c);
   const double coordinates = c.eval((a + b) / 2).lpNorm<Eigen::Infinity>() + size + std::abs(d);
-  return 16 * kUnit * (coordinates + std::abs(d) * 3 * size / slowest);
+  const double normal = slowest > 0 ? std::min(2.0, 16 * kUnit * 3 * size / slowest) : 2.0;
+  return 16 * kUnit * coordinates + std::abs(d) * normal;
 }
 
 // The exact offset's speed |c'|·|1 − d·κ| at t, its limit from inside [a, b] where c' vanishes.
