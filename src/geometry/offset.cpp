@@ -73,6 +73,21 @@ double offset_speed(const CubicBezier& c, double t, double d, double a, double b
   return std::abs(s - d * cross(v, c.second_derivative(t)) / (s * s));
 }
 
+// Where f is least on [a, b] by golden-section search of `steps` steps (a local minimum where f
+// has several), and f there.
+template <class F>
+std::pair<double, double> golden_minimum(const F& f, double a, double b, int steps) {
+  constexpr double g = 0.6180339887498949;
+  double x = b - g * (b - a), y = a + g * (b - a), fx = f(x), fy = f(y);
+  for (int i = 0; i < steps; ++i) {
+    if (fx < fy)
+      b = y, y = x, fy = fx, x = b - g * (b - a), fx = f(x);
+    else
+      a = x, x = y, fx = fy, y = a + g * (b - a), fy = f(y);
+  }
+  return fx < fy ? std::pair(x, fx) : std::pair(y, fy);
+}
+
 // One approximating cubic: the exact ends and end directions, arms of lengths a0 and a1.
 CubicBezier hermite(const Vec2& p0, const Vec2& t0, double a0, const Vec2& p3, const Vec2& t3, double a1) {
   return {p0, p0 + a0 * t0, p3 - a1 * t3, p3};
@@ -207,19 +222,9 @@ class Fitter {
   // An end of [a, b] nearer than any inner point is taken as it is.
   double distance_to_offset(const Vec2& q, double a, double b) const {
     const auto at = [&](double t) { return (point(t) - q).norm(); };
-    constexpr double g = 0.6180339887498949;
-    const double lo = a, hi = b;
-    double x = b - g * (b - a), y = a + g * (b - a), fx = at(x), fy = at(y);
-    for (int i = 0; i < 26; ++i) {
-      if (fx < fy) {
-        b = y, y = x, fy = fx, x = b - g * (b - a), fx = at(x);
-      } else {
-        a = x, x = y, fx = fy, y = a + g * (b - a), fy = at(y);
-      }
-    }
-    const double t = fx < fy ? x : y;
-    const double ends = std::min(at(lo), at(hi));
-    if (ends <= std::min(fx, fy)) return ends;
+    const auto [t, nearest] = golden_minimum(at, a, b, 26);
+    const double ends = std::min(at(a), at(b));
+    if (ends <= nearest) return ends;
     const Vec2 foot = point(t);
     return std::abs(cross(q - foot, tangent(t)));
   }
@@ -298,16 +303,7 @@ double sign_change(const CubicBezier& c, double d, double x, double y, double fx
 
 // Where sign·cusp_function is least on [x, y], by golden-section search.
 double deepest(const CubicBezier& c, double d, double x, double y, double sign) {
-  constexpr double g = 0.6180339887498949;
-  const auto at = [&](double t) { return sign * cusp_function(c, t, d); };
-  double a = y - g * (y - x), b = x + g * (y - x), fa = at(a), fb = at(b);
-  for (int i = 0; i < 40; ++i) {
-    if (fa < fb)
-      y = b, b = a, fb = fa, a = y - g * (y - x), fa = at(a);
-    else
-      x = a, a = b, fa = fb, b = x + g * (y - x), fb = at(b);
-  }
-  return fa < fb ? a : b;
+  return golden_minimum([&](double t) { return sign * cusp_function(c, t, d); }, x, y, 40).first;
 }
 
 }  // namespace

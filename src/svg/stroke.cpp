@@ -215,7 +215,6 @@ class Outliner {
   void corner(Chain& chain, const Vec2& p, const Vec2& in, const Vec2& out, const Vec2& to,
               double room) const;
   bool meet_inside(CubicBezier& last, CubicBezier& next, const Vec2& in, const Vec2& out) const;
-  bool straight(const CubicBezier& c) const;
   void cap(Chain& chain, const Vec2& p, const Vec2& direction, const Vec2& to) const;
   void arc(Chain& chain, const Vec2& centre, const Vec2& to, double sweep) const;
   void dot(const Vec2& p, std::vector<Subpath>& out) const;
@@ -328,14 +327,6 @@ void Outliner::cap(Chain& chain, const Vec2& p, const Vec2& direction, const Vec
   }
 }
 
-// Whether c is a straight piece: its inner control points within the tolerance of its chord.
-bool Outliner::straight(const CubicBezier& c) const {
-  const Vec2 chord = c.p[3] - c.p[0];
-  const double length = chord.norm();
-  return length > 0 && std::abs(cross(chord, c.p[1] - c.p[0])) <= tolerance_ * length &&
-         std::abs(cross(chord, c.p[2] - c.p[0])) <= tolerance_ * length;
-}
-
 // At a corner turning towards this side (in × out > 0), two straight offset pieces cross inside
 // the band: `last` ends and `next` starts past the point q where their lines meet. Cut back to q,
 // the loop no longer runs on to the corner and back (that notch lies inside both segments' bands:
@@ -344,7 +335,8 @@ bool Outliner::straight(const CubicBezier& c) const {
 // width that feature processing would see as a cluster of short pieces. False, and nothing
 // changed, unless both are straight and q lies strictly inside both.
 bool Outliner::meet_inside(CubicBezier& last, CubicBezier& next, const Vec2& in, const Vec2& out) const {
-  if (!(cross(in, out) > 0) || !straight(last) || !straight(next)) return false;
+  if (!(cross(in, out) > 0) || !geometry::is_straight(last, tolerance_) || !geometry::is_straight(next, tolerance_))
+    return false;
   const Vec2 u = last.p[3] - last.p[0], v = next.p[3] - next.p[0];
   const double det = cross(u, v);
   if (!(std::abs(det) > 1e-9 * u.norm() * v.norm())) return false;
