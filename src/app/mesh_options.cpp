@@ -61,22 +61,20 @@ CLI::Option* add_parameter(CLI::App& cmd, const ParameterOption& o, Parameters& 
       ->check(range_of(o));
 }
 
-// The options of these groups, in the table's order; returns what it registered.
-std::vector<const CLI::Option*> add_groups(CLI::App& cmd, Parameters& p, std::initializer_list<std::string_view> groups) {
+// The options of the table whose `field` is one of `values`, in the table's order; returns what
+// it registered.
+std::vector<const CLI::Option*> add_where(CLI::App& cmd, Parameters& p, const char* ParameterOption::*field,
+                                          std::initializer_list<std::string_view> values) {
   std::vector<const CLI::Option*> added;
   for (const ParameterOption& o : parameter_options())
-    if (std::find(groups.begin(), groups.end(), std::string_view(o.group)) != groups.end())
+    if (std::find(values.begin(), values.end(), std::string_view(o.*field)) != values.end())
       added.push_back(add_parameter(cmd, o, p));
   return added;
 }
 
-// The options of the table with these names (as --help shows them first), in the table's order.
-std::vector<const CLI::Option*> add_named(CLI::App& cmd, Parameters& p, std::initializer_list<std::string_view> names) {
-  std::vector<const CLI::Option*> added;
-  for (const ParameterOption& o : parameter_options())
-    if (std::find(names.begin(), names.end(), std::string_view(o.option)) != names.end())
-      added.push_back(add_parameter(cmd, o, p));
-  return added;
+// The options of these groups.
+std::vector<const CLI::Option*> add_groups(CLI::App& cmd, Parameters& p, std::initializer_list<std::string_view> groups) {
+  return add_where(cmd, p, &ParameterOption::group, groups);
 }
 
 }  // namespace
@@ -123,7 +121,7 @@ void add_run_options(CLI::App& cmd, pipeline::Parameters& p) {
 }
 
 std::vector<const CLI::Option*> add_batch_run_options(CLI::App& cmd, pipeline::Parameters& p) {
-  return add_named(cmd, p, {"--regions", "--domain"});
+  return add_where(cmd, p, &ParameterOption::option, {"--regions", "--domain"});
 }
 
 bool parameters_valid(const pipeline::Parameters& p) {
