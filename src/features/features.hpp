@@ -61,6 +61,8 @@ struct Features {
 // The box the drawing is meshed in (its diagonal is d): the soup's bounds, or its canvas (viewBox
 // or width/height) when nothing is drawn.
 Box2 drawing_box(const svg::FeatureSoup& soup);
+// The same for a soup whose curves and points span `bounds`, drawn in `canvas`.
+Box2 drawing_box(const Box2& bounds, const Box2& canvas);
 
 // The whole stage, with `lengths` resolved for drawing_box(soup). Deterministic; never fails on
 // finite input.

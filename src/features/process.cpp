@@ -44,11 +44,14 @@ double fraction_along(const Segment& s, const Vec2& p) {
   return len2 > 0 ? (p - s.a).dot(ab) / len2 : 0.0;
 }
 
-Box2 drawing_box(const svg::FeatureSoup& soup) {
-  const Box2 bounds = soup.bounds();
+Box2 drawing_box(const Box2& bounds, const Box2& canvas) {
   // Nothing drawn (a file of gradient or pattern definitions): the canvas alone is meshed.
-  if (bounds.empty() && !soup.canvas.empty() && soup.canvas.diagonal() > 0) return soup.canvas;
+  if (bounds.empty() && !canvas.empty() && canvas.diagonal() > 0) return canvas;
   return bounds;
+}
+
+Box2 drawing_box(const svg::FeatureSoup& soup) {
+  return drawing_box(soup.bounds(), soup.canvas);
 }
 
 Features process(const svg::FeatureSoup& soup, const Lengths& lengths) {

@@ -339,7 +339,13 @@ void read_stage(Result& r, const Source& source, const Parameters& parameters, c
       return;
     }
     svg::ReadOptions read;
-    read.degenerate_tolerance_rel = parameters.eps_m_rel;
+    // Every length, ε_m with the others, made absolute once, against the drawing's box as read.
+    bool resolved = false;
+    read.degenerate_tolerance = [&](const geometry::Box2& bounds, const geometry::Box2& canvas) {
+      r.resolved = resolve(parameters, finite_diagonal(features::drawing_box(bounds, canvas), source.name));
+      resolved = true;
+      return r.resolved.features.eps_m;
+    };
     read.close_filled_subpaths = reads_paint(parameters);
     read.strokes_as_areas = strokes_as_areas(parameters);
     read.max_curves = parameters.limits.max_curves;
@@ -353,7 +359,7 @@ void read_stage(Result& r, const Source& source, const Parameters& parameters, c
       r.soup = finite_soup(source.soup, source.name);
     for (const std::string& w : r.soup.warnings) warn(w);
     stats["seconds"]["read"] = seconds_since(t);
-    r.resolved = resolve(parameters, finite_diagonal(features::drawing_box(r.soup), source.name));
+    if (!resolved) r.resolved = resolve(parameters, finite_diagonal(features::drawing_box(r.soup), source.name));
     if (last == Stage::read) return;
     report(options, Stage::features);
     t = Clock::now();

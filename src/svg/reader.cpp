@@ -1144,7 +1144,12 @@ FeatureSoup Reader::read() {
   }
   // Outside this range lengths relative to the drawing's size overflow or underflow, here first.
   if (const std::string problem = drawing_size_problem(extent); !problem.empty()) throw InputError(problem);
-  const double tolerance = options_.degenerate_tolerance_rel * extent.diagonal();
+  Box2 bounds;  // what FeatureSoup::bounds() would be if no path became a point
+  for (const PendingSubpath& sp : pending_) {
+    bounds.add(sp.start);
+    for (const CubicBezier& c : sp.segments) bounds.add(c.bounds());
+  }
+  const double tolerance = options_.degenerate_tolerance ? options_.degenerate_tolerance(bounds, soup_.canvas) : 0.0;
   soup_.curves.reserve(curve_count_);
   for (PendingSubpath& sp : pending_) add_to_soup(sp, tolerance);
   pending_.clear();

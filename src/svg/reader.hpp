@@ -4,6 +4,7 @@
 // viewport and <use> offset has been applied. The root's width/height do not scale anything.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <curvemesh/parameters.hpp>
 #include <string>
 #include <string_view>
@@ -13,9 +14,12 @@
 namespace curvemesh::svg {
 
 struct ReadOptions {
-  // Paths whose control points all lie within this distance, relative to the drawing's
-  // bounding-box diagonal, become isolated points (paper §4: ε_m, from pipeline::Parameters).
-  double degenerate_tolerance_rel = 0;
+  // ε_m (paper §4): paths whose control points all lie within it of their centre become isolated
+  // points. It is a length relative to the drawing's size, asked for once the drawing is read: of
+  // the tight box of its curves (before any path became a point) and its canvas. The pipeline
+  // answers with pipeline::resolve's ε_m, made absolute against the diagonal every other length
+  // is. Unset: 0, no path is a point unless all its control points coincide.
+  std::function<double(const Box2& bounds, const Box2& canvas)> degenerate_tolerance;
   // Add the straight line that closes each open subpath of a filled element to the curves (not
   // degenerate ones): the edge of the filled shape becomes a feature, so the mesh's faces follow
   // the paint (regions/). Off, the curves are the drawn outlines alone.

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -129,6 +130,32 @@ TEST(PipelineExtremes, FoundByFuzzingACrossingWithinRoundOffOfACurveEnd) {
   pipeline::Parameters parameters;
   parameters.edge_length_rel = 1.0 / 10;
   expect_certified(pipeline::run(pipeline::Source::svg(svg, "fuzz-2"), parameters));
+}
+
+// ε_m is one of the lengths pipeline::resolve makes absolute, against the diagonal d every other
+// length is: the tight box of the curves. An S-shaped cubic whose control points reach far beyond
+// it (control box 2,000 high, curve 577) makes the two boxes differ by 3.5×. The segment from
+// (5, −h) to (5, h) has its points (the start, then four control points) centred at (5, −h/5),
+// the farthest 1.2 h from it: it becomes a point when 1.2 h ≤ ε_m, and stays a curve at 1.1 ε_m,
+// which the control box's diagonal would have made a point.
+TEST(PipelineExtremes, TinyPathsAreMeasuredAgainstTheMeshDiagonal) {
+  curvemesh::pipeline::Parameters p;
+  p.stop_after = curvemesh::StopAfter::triangulate;
+  p.eps_m_rel = 1e-6;  // large enough for paths far above round-off
+  const double d = std::hypot(10.0, 1000 / std::sqrt(3.0));  // the S-curve's tight box
+  for (const double half : {0.9, 1.1}) {
+    SCOPED_TRACE(half);
+    const double h = half * p.eps_m_rel * d / 1.2;
+    std::ostringstream text;
+    text.precision(17);
+    text << "<svg xmlns=\"http://www.w3.org/2000/svg\"><path d=\"M 0 0 C 0 -1000 10 1000 10 0\" fill=\"none\" "
+         << "stroke=\"black\"/><path d=\"M 5 " << -h << " L 5 " << h << "\" fill=\"none\" stroke=\"black\"/></svg>";
+    const pipeline::Result r = pipeline::run(pipeline::Source::svg(text.str(), "tiny"), p);
+    EXPECT_NEAR(r.resolved.d, d, 1e-9 * d);
+    EXPECT_DOUBLE_EQ(r.resolved.features.eps_m, p.eps_m_rel * r.resolved.d);
+    EXPECT_EQ(r.soup.points.size(), half < 1 ? 1u : 0u);
+    EXPECT_EQ(r.soup.curves.size(), half < 1 ? 1u : 2u);
+  }
 }
 
 }  // namespace

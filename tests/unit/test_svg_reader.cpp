@@ -22,7 +22,9 @@ std::string doc(const std::string& body, const std::string& root_attrs = "") {
 // The reader with the paper's ε_m.
 ReadOptions paper_options() {
   ReadOptions o;
-  o.degenerate_tolerance_rel = curvemesh::pipeline::Parameters{}.eps_m_rel;
+  o.degenerate_tolerance = [](const Box2& bounds, const Box2&) {
+    return curvemesh::pipeline::Parameters{}.eps_m_rel * bounds.diagonal();
+  };
   return o;
 }
 
