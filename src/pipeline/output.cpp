@@ -130,19 +130,29 @@ std::vector<io::VtuCellScalars> cell_data(const Result& r) {
   return out;
 }
 
-std::vector<int> line_curves(const Result& r, const io::HighOrderMesh& mesh) {
-  require_mesh(r);
-  const mesh::TriMesh& corners = r.corners();
+namespace {
+
+// Per line of `mesh`, the curve of the feature of its two ends in `corners`; node_origin (when
+// given) takes a node of `mesh` to its number in the whole mesh, the corners' ids.
+std::vector<int> curves_of_lines(const mesh::TriMesh& corners, const io::HighOrderMesh& mesh,
+                                 const std::vector<int>* node_origin) {
   std::vector<int> out;
   out.reserve(mesh.line_count());
   for (int l = 0; l < mesh.line_count(); ++l) {
     const auto ends = mesh.line(l);
-    // A domain's mesh has its nodes renumbered: back to the whole mesh's (the corners' ids).
-    const auto node = [&](int i) { return r.painted ? r.painted->node_origin.at(i) : i; };
+    const auto node = [&](int i) { return node_origin ? node_origin->at(i) : i; };
     const mesh::EdgeFeature* feature = corners.feature(node(ends[0]), node(ends[1]));
     out.push_back(feature ? feature->curve : -1);
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<int> line_curves(const Result& r, const io::HighOrderMesh& mesh) {
+  require_mesh(r);
+  // A domain's mesh has its nodes renumbered: back to the whole mesh's.
+  return curves_of_lines(r.corners(), mesh, r.painted ? &r.painted->node_origin : nullptr);
 }
 
 void write_msh(const Result& r, const std::string& path, int version) {
@@ -212,7 +222,7 @@ MeshedDrawing meshed_drawing(const Result& r) {
   const curve::CurvedMesh& curved = *r.curved;
   MeshedDrawing out;
   out.mesh = io::curved_mesh(curved);
-  out.line_curve = line_curves(r, out.mesh);
+  out.line_curve = curves_of_lines(curved.linear, out.mesh, nullptr);  // the whole mesh: its own numbers
   out.diagonal = r.resolved.d;
   out.colours = curve_colours(r.soup);
   out.classification = r.classification;
