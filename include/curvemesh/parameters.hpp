@@ -23,9 +23,10 @@ struct CURVEMESH_API Limits {
 };
 
 // What part of the meshed box a run gives out: all of it, what the drawing's filled elements cover
-// (the shape as it is seen), the even-odd inside of its curves, or what some fill or stroke paints
-// (strokes read as areas).
-enum class Domain { box, filled, evenodd, painted };
+// (the shape as it is seen), the even-odd inside of its curves, what some fill or stroke paints
+// (strokes read as areas), or the even-odd outside of its curves (the box without evenodd). The
+// same names serve `mesh --domain`, the solvers' --domain and the Python module.
+enum class Domain { box, filled, evenodd, painted, outside };
 
 // What a stroked element contributes: its centre line (a curve of no width), or the outline of the
 // area its stroke paints, with the stroke's width, joins, caps and dashes.

@@ -17,7 +17,7 @@ namespace curvemesh::app {
 namespace {
 
 struct DiffuseArgs {
-  SolveOptions solve;  // input, PNG (-o), VTU (--vtu), width, linear, meshing; the domain is the whole box
+  SolveOptions solve;  // input, PNG (-o), VTU (--vtu), width, straight, meshing; the domain is the whole box
   std::string background = "white";
 };
 
@@ -35,7 +35,7 @@ int run_diffuse(const DiffuseArgs& args) {
   for (const geometry::Vec2& x : drawing.mesh.nodes) view.add(x);
 
   const fem::DiffusionMesh cut = fem::cut_along_curves(drawing, drawing.colours);
-  const io::HighOrderMesh mesh = o.linear ? fem::straight_mesh(cut.cut.mesh) : cut.cut.mesh;
+  const io::HighOrderMesh mesh = o.straight ? fem::straight_mesh(cut.cut.mesh) : cut.cut.mesh;
   const fem::Geometry geometry(mesh);
   const fem::Space space(mesh, 2);
   const fem::DiffusionResult r = fem::diffuse(geometry, space, cut.sides, options);
@@ -47,7 +47,7 @@ int run_diffuse(const DiffuseArgs& args) {
 
   std::printf("diffuse: %d triangles (%s map), %d lines cut, %d P2 unknowns per channel (%d held by the curves' "
               "colours), %d part%s with no curve set to the background\n",
-              mesh.triangle_count(), o.linear ? "straight" : "cubic", cut.cut_lines, r.unknowns, r.fixed,
+              mesh.triangle_count(), o.straight ? "straight" : "cubic", cut.cut_lines, r.unknowns, r.fixed,
               r.background_components, r.background_components == 1 ? "" : "s");
   std::printf("time: meshing %.3f s, assembly %.3f s, solve %.3f s (3 channels), rasterization %.3f s (%dx%d)\n",
               drawing.seconds, r.assembly_seconds, r.solve_seconds, raster_seconds, picture.width, picture.height);
@@ -84,8 +84,9 @@ Runner add_diffuse_command(CLI::App& app) {
   cmd->add_option("--width", o.width, "width of the picture in pixels (the height follows the drawing's box)")
       ->capture_default_str()
       ->check(CLI::Range(8, 20000));  // and at most fem::kMaxPicturePixels in all
-  cmd->add_flag("--linear", o.linear,
-                "solve on straight triangles: the same mesh with its straight (P1) map instead of the cubic one");
+  cmd->add_flag("--straight", o.straight,
+                "solve on straight triangles: the same mesh with its straight (P1) map instead of the cubic one "
+                "(not `mesh --linear`, which makes another mesh, of order 1)");
   cmd->add_option("--vtu", o.output_vtu,
                   "also write the cut mesh with the colour (3 components in [0, 1]) at its nodes as VTK XML (.vtu)");
   cmd->add_option("--background", args->background,

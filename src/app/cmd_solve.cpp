@@ -1,5 +1,5 @@
 // `curvemesh solve PROBLEM ...`: the partial differential equations of the paper's §5.1 on a
-// drawing's curved mesh (or, with --linear, on the same mesh with straight triangles).
+// drawing's curved mesh (or, with --straight, on the same mesh with straight triangles).
 #include <CLI/CLI.hpp>
 #include <vector>
 
@@ -12,7 +12,7 @@ Runner add_solve_command(CLI::App& app) {
       "solve",
       "Mesh a drawing and solve a PDE on it: inflate, elastic or stokes\n"
       "Mesh a drawing and solve a PDE on it with quadratic (P2) elements on the cubic curved map (paper §5.1); "
-      "--linear uses the straight map of the same mesh. Writes the solution as VTU (ParaView) and PNG and "
+      "--straight uses the straight map of the same mesh. Writes the solution as VTU (ParaView) and PNG and "
       "prints the time of each step.");
   cmd->require_subcommand(1);
   std::vector<SubcommandRunner> problems;

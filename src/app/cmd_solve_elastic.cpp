@@ -70,7 +70,7 @@ void print_elastic_json(const ElasticArgs& args, const Problem& problem, const f
   nlohmann::ordered_json j;
   j["converged"] = r.converged;
   if (!r.converged) j["failure"] = r.failure;
-  j["map"] = args.solve.linear ? "straight" : "cubic";
+  j["map"] = args.solve.straight ? "straight" : "cubic";
   j["triangles"] = problem.mesh.triangle_count();
   j["unknowns"] = r.unknowns;
   j["free_unknowns"] = r.free_unknowns;
@@ -202,7 +202,7 @@ SubcommandRunner add_solve_elastic_command(CLI::App& solve) {
       "potential energy) and their time. The VTU holds the displacement (3 components, z = 0) at the nodes, in the "
       "drawing's units; the PNG shows |displacement| on the deformed body, over the undeformed one in grey. The "
       "paper's set-up: `curvemesh solve elastic examples/square-with-hole.svg -o out.vtu --png out.png`.");
-  add_solve_options(*cmd, args->solve, "inside");
+  add_solve_options(*cmd, args->solve, Domain::evenodd);
   cmd->add_option("--youngs", args->youngs, "Young's modulus E")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--poisson", args->poisson, "Poisson's ratio nu, in (-1, 0.5)")
       ->capture_default_str()
@@ -236,7 +236,7 @@ SubcommandRunner add_solve_elastic_command(CLI::App& solve) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--deformed", args->output_deformed,
-                  "also write the deformed body as VTU (nodes moved by the displacement; order 3, or 2 with --linear, "
+                  "also write the deformed body as VTU (nodes moved by the displacement; order 3, or 2 with --straight, "
                   "so that the moved map is exact)");
   cmd->add_option("--probe", args->probe, "print the displacement at this point X Y of the body (drawing coordinates)")
       ->expected(2);

@@ -63,7 +63,7 @@ SubcommandRunner add_solve_inflate_command(CLI::App& solve) {
       "Inflate the drawing's enclosed regions into a 3D surface (paper §5.1, Repoussé with a constant load): "
       "the bi-Laplace equation, clamped (zero height and slope) at the curves, in Ciarlet-Raviart mixed form "
       "(P2 height and P2 -Δheight, a saddle-point system solved by UMFPACK).");
-  add_solve_options(*cmd, args->solve, "inside");
+  add_solve_options(*cmd, args->solve, Domain::evenodd);
   cmd->add_option("--surface", args->output_surface,
                   "also write the inflated surface as a 3D mesh: Wavefront .obj, or .ply (ASCII)");
   cmd->add_option("--height", args->height_rel, "height of the highest point, relative to d (the load is scaled to it)")

@@ -136,7 +136,7 @@ SubcommandRunner add_solve_stokes_command(CLI::App& solve) {
       "the mesh is cut open along. Regions closed off by curves hold fluid at rest. Writes velocity, "
       "pressure and "
       "speed at the nodes; the picture shows the speed.");
-  add_solve_options(*cmd, args->solve, "all");
+  add_solve_options(*cmd, args->solve, Domain::box);
   const CLI::Validator positive_finite(
       [](std::string& text) {
         double value = 0;

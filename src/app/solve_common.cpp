@@ -16,21 +16,27 @@
 
 namespace curvemesh::app {
 
-void add_solve_options(CLI::App& cmd, SolveOptions& o, const std::string& default_domain) {
+void add_solve_options(CLI::App& cmd, SolveOptions& o, Domain default_domain) {
   o.domain = default_domain;
   cmd.add_option("input", o.input, "SVG drawing to mesh and solve on")->required();
   cmd.add_option("-o,--output", o.output_vtu,
                  "VTK XML file (.vtu) to write: the domain's mesh with the solution at its nodes (opens in ParaView)");
   cmd.add_option("--png", o.output_png, "also draw the solution into this PNG picture");
   cmd.add_option("--width", o.width, "width of the PNG picture in pixels")->capture_default_str()->check(CLI::Range(8, 20000));
-  cmd.add_flag("--linear", o.linear,
-               "solve on straight triangles: the same mesh with its straight (P1) map instead of the cubic one");
+  cmd.add_flag("--straight", o.straight,
+               "solve on straight triangles: the same mesh with its straight (P1) map instead of the cubic one "
+               "(not `mesh --linear`, which makes another mesh, of order 1)");
+  // The names and meanings of `mesh --domain` (Parameters' domain), one vocabulary for every command.
+  std::map<std::string, Domain> names;
+  const std::vector<std::string> listed = pipeline::domain_names();
+  for (std::size_t i = 0; i < listed.size(); ++i) names.emplace(listed[i], static_cast<Domain>(i));
   cmd.add_option("--domain", o.domain,
-                 "where the problem lives: inside (regions enclosed by an odd number of curves, the even-odd rule; "
-                 "also called evenodd), outside (the others), filled (what the drawing's filled elements cover, "
-                 "as `mesh --domain filled`), or all (the whole meshed box; also called box)")
-      ->capture_default_str()
-      ->check(CLI::IsMember(pipeline::domain_names()));
+                 "where the problem lives, as `mesh --domain` keeps it: box (the whole meshed box), filled (what the "
+                 "drawing's filled elements cover), evenodd (the regions enclosed by an odd number of curves), "
+                 "painted (what some fill or stroke paints, strokes read as areas) or outside (the box without "
+                 "evenodd)")
+      ->transform(CLI::CheckedTransformer(names))
+      ->default_str(listed.at(static_cast<std::size_t>(default_domain)));
   add_feature_options(cmd, o.parameters);
   add_memory_limit_option(cmd, o.memory_limit_gb);
 }
@@ -61,10 +67,12 @@ std::optional<fem::MeshedDrawing> mesh_for_solving(const SolveOptions& o, const 
   *exit_code = kOk;
   limit_memory(o.memory_limit_gb);
   pipeline::Parameters curved = o.parameters;
-  curved.order = 3;  // --linear solves on the straight map of the curved mesh
+  curved.order = 3;  // --straight solves on the straight map of the curved mesh
   pipeline::RunOptions run;
   run.warn = [&](const std::string& w) { warn(o.input, w); };
-  curved.regions = o.domain == "filled";  // the fills classified: meshed_drawing keeps them
+  // The paint classified where the domain asks for it: meshed_drawing keeps it.
+  curved.regions = o.domain == Domain::filled || o.domain == Domain::painted;
+  if (o.domain == Domain::painted) curved.strokes = Strokes::areas;
   try {
     ProgressDisplay display(o.input);
     run.progress = [&](const pipeline::Progress& p) { display(p); };
@@ -89,17 +97,16 @@ std::optional<Problem> prepare_problem(const SolveOptions& o, int* exit_code) {
   for (const geometry::Vec2& x : whole.nodes) p.view.add(x);
   std::optional<pipeline::DomainMesh> domain = pipeline::cut_domain(p.drawing, o.domain);
   if (!domain) {
-    say(o.input + ": the domain '" + o.domain + "' is empty (" +
-        (o.domain == "filled" ? "nothing of the drawing is filled" : "no region of the drawing is enclosed by its curves") +
-        "); try --domain all");
+    say(o.input + ": the domain '" + pipeline::domain_names().at(static_cast<std::size_t>(o.domain)) + "' is empty (" +
+        pipeline::empty_domain_reason(o.domain, p.drawing.has_strokes) + "); try --domain box");
     *exit_code = kInvalidInput;
     return std::nullopt;
   }
   p.mesh = std::move(domain->mesh);
   p.line_origin = std::move(domain->line_origin);
-  if (o.linear) p.mesh = fem::straight_mesh(p.mesh);
+  if (o.straight) p.mesh = fem::straight_mesh(p.mesh);
   std::cerr << "curvemesh: meshed " << base::printable(o.input) << " in " << p.drawing.seconds << " s: " << p.mesh.triangle_count()
-            << " triangles in the domain (" << (o.linear ? "straight" : "cubic") << " map)\n";
+            << " triangles in the domain (" << (o.straight ? "straight" : "cubic") << " map)\n";
   return p;
 }
 

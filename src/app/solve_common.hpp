@@ -27,18 +27,18 @@ struct SolveOptions {
   const char* vtu_option = "-o";  // the options that name them, for messages
   const char* png_option = "--png";
   int width = 800;       // PNG width in pixels
-  bool linear = false;   // P2 on the straight map of the same mesh instead of the cubic one
-  std::string domain;    // "inside" (odd depth), "outside" (even depth) or "all"
+  bool straight = false;  // P2 on the straight map of the same mesh instead of the cubic one
+  Domain domain = Domain::box;  // as `mesh --domain`: the part of the meshed box the problem lives on
   double memory_limit_gb = 0;       // --memory-limit
-  pipeline::Parameters parameters;  // of the mesh (always curved: --linear only drops the cubic map)
+  pipeline::Parameters parameters;  // of the mesh (always curved: --straight only drops the cubic map)
   // A command's own outputs besides -o and --png (elastic's --deformed, inflate's --surface), with
   // their options: checked against the input and the others before anything is read.
   std::vector<base::NamedPath> other_outputs;
 };
 
-// Registers input, -o/--output (VTU), --png, --width, --linear, --domain (default as given),
+// Registers input, -o/--output (VTU), --png, --width, --straight, --domain (default as given),
 // --memory-limit and the feature options.
-void add_solve_options(CLI::App& cmd, SolveOptions& options, const std::string& default_domain);
+void add_solve_options(CLI::App& cmd, SolveOptions& options, Domain default_domain);
 
 // Checks the outputs (none is the input, none named twice), reads and meshes the drawing through
 // the pipeline, and checks that the picture asked for (--png, --width) is within
@@ -50,7 +50,7 @@ std::optional<fem::MeshedDrawing> mesh_for_solving(const SolveOptions& options, 
 // asked.
 struct Problem {
   fem::MeshedDrawing drawing;                // the whole box, cubic
-  io::HighOrderMesh mesh;                    // the domain (cubic, or straight with --linear)
+  io::HighOrderMesh mesh;                    // the domain (cubic, or straight with --straight)
   std::vector<int> line_origin;              // per line of `mesh`: the line of drawing.mesh
   geometry::Box2 view;                       // the box, for pictures
 };

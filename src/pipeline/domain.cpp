@@ -6,20 +6,31 @@
 
 namespace curvemesh::pipeline {
 
-std::vector<std::string> domain_names() { return {"inside", "evenodd", "outside", "filled", "all", "box"}; }
+std::vector<std::string> domain_names() {
+  std::vector<std::string> names;
+  for (Domain d : regions::kDomains) names.emplace_back(regions::domain_name(d));
+  return names;
+}
 
-std::optional<DomainMesh> cut_domain(const MeshedDrawing& drawing, const std::string& name) {
-  // inside and all are the older names of evenodd and box; outside is evenodd's complement.
-  const std::string base = name == "all" ? "box" : name == "inside" || name == "outside" ? "evenodd" : name;
-  const std::optional<Domain> domain = regions::domain_named(base);
-  if (!domain) return std::nullopt;
-  std::vector<char> keep = regions::domain_triangles(drawing.classification, *domain);
-  if (name == "outside")
-    for (char& k : keep) k = !k;
+std::optional<DomainMesh> cut_domain(const MeshedDrawing& drawing, Domain domain) {
+  const std::vector<char> keep = regions::domain_triangles(drawing.classification, domain);
   if (std::count(keep.begin(), keep.end(), 1) == 0) return std::nullopt;
   DomainMesh out;
   out.mesh = regions::submesh(drawing.mesh, keep, &out.line_origin);
   return out;
+}
+
+// Why a domain came out empty. A drawing with strokes can still leave its painted domain empty:
+// where a stroke is narrower than the features stage keeps apart (mu), its two sides are merged and
+// no face lies between them.
+std::string empty_domain_reason(Domain domain, bool has_strokes) {
+  if (domain == Domain::evenodd) return "no part of the box is enclosed by its curves";
+  if (domain == Domain::outside) return "every part of the box is enclosed by its curves";
+  if (domain == Domain::filled) return "nothing of the drawing is filled";
+  if (has_strokes)
+    return "nothing of the drawing is filled, and its strokes are narrower than the mesh resolves: their sides lie "
+           "within --mu of one another; try a smaller --mu and --epsilon";
+  return "nothing of the drawing is filled or stroked";
 }
 
 io::HighOrderMesh used_nodes(const io::HighOrderMesh& mesh, std::vector<int>& node_origin) {

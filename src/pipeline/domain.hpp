@@ -2,6 +2,7 @@
 // The part of a meshed drawing a problem lives on, cut by the pipeline for the commands that
 // solve on it (app/ never cuts a mesh itself): `solve --domain`'s names, the same classification
 // as `mesh --domain` (regions/faces.hpp).
+#include <curvemesh/parameters.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,12 +17,15 @@ struct DomainMesh {
   std::vector<int> line_origin;  // per line of `mesh`: its line in the drawing's whole mesh
 };
 
-// The triangles of the drawing's mesh in the domain named `name`: box (or all), filled, evenodd
-// (or inside), or outside (evenodd's complement). Nothing when the domain is empty. `filled`
-// needs a drawing meshed with its paint read (RunOptions::regions).
-std::optional<DomainMesh> cut_domain(const MeshedDrawing& drawing, const std::string& name);
+// The triangles of the drawing's mesh in `domain`, as `mesh --domain` keeps them. Nothing when the
+// domain is empty. `filled` and `painted` need a drawing meshed with its paint read
+// (Parameters::regions; for `painted`, strokes as areas).
+std::optional<DomainMesh> cut_domain(const MeshedDrawing& drawing, Domain domain);
 
-// The names cut_domain takes.
+// Why `domain` came out empty, for a message: "no part of the box is enclosed by its curves".
+std::string empty_domain_reason(Domain domain, bool has_strokes);
+
+// The domains' names, as every command and the Python module spell them (Domain's order).
 std::vector<std::string> domain_names();
 
 // `mesh` with only the nodes some triangle uses (a straight map leaves the cubic nodes unused);

@@ -26,6 +26,7 @@ struct MeshedDrawing {
   // (RunOptions::regions): what regions::domain_triangles picks a problem's domain from.
   regions::Classification classification;
   double diagonal = 0;               // d, the input's bounding-box diagonal
+  bool has_strokes = false;          // some stroke was read as an area (a layer of the paint)
   double seconds = 0;                // time to read and mesh
 };
 

@@ -128,12 +128,12 @@ std::vector<ParameterOption> run_options() {
        "(with a warning). The line "
        "closing an open filled subpath becomes a feature",
        CURVEMESH_FIELD(regions, bool)},
-      {"--domain", "--domain", "domain", "", "run", Kind::choice, 0, 3, false, 0,
-       {"box", "filled", "evenodd", "painted"},
+      {"--domain", "--domain", "domain", "", "run", Kind::choice, 0, 4, false, 0,
+       {"box", "filled", "evenodd", "painted", "outside"},
        "the part of the box to mesh: box (all of it), filled (what some filled element covers: the shape as it is "
-       "seen, without the background), evenodd (the even-odd inside of all curves) or painted (what some fill or "
-       "stroke paints; implies --strokes areas); nodes no triangle uses are dropped, lines on the domain's border "
-       "keep their tag",
+       "seen, without the background), evenodd (the even-odd inside of all curves), painted (what some fill or "
+       "stroke paints; implies --strokes areas) or outside (the box without evenodd); nodes no triangle uses are "
+       "dropped, lines on the domain's border keep their tag",
        CURVEMESH_FIELD(domain, Domain)},
       {"--stop-after", "--stop-after", "stop_after", "", "run", Kind::choice, 0, 2, false, 0,
        {"triangulate", "optimize", "curve"},

@@ -10,6 +10,7 @@
 #include "base/limits.hpp"
 #include "features/poly_input.hpp"
 #include "io/curved_mesh.hpp"
+#include "pipeline/domain.hpp"
 #include "pipeline/output.hpp"
 #include "svg/drawing_size.hpp"
 #include "svg/error.hpp"
@@ -164,18 +165,6 @@ bool reads_paint(const Parameters& p) {
 
 // The faces of the finished mesh, the fills over them and the part given out (Parameters'
 // regions and domain).
-// Why a domain came out empty. A drawing with strokes can still leave its painted domain empty:
-// where a stroke is narrower than the features stage keeps apart (mu), its two sides are merged and
-// no face lies between them.
-std::string empty_domain_reason(Domain domain, bool has_strokes) {
-  if (domain == Domain::evenodd) return "no part of the box is enclosed by its curves";
-  if (domain == Domain::filled) return "nothing of the drawing is filled";
-  if (has_strokes)
-    return "nothing of the drawing is filled, and its strokes are narrower than the mesh resolves: their sides lie "
-           "within --mu of one another; try a smaller --mu and --epsilon";
-  return "nothing of the drawing is filled or stroked";
-}
-
 void paint(Result& r, const std::function<void(const std::string&)>& warn) {
   const Parameters& o = r.parameters;
   if (!o.regions && o.domain == Domain::box) return;

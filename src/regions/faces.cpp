@@ -98,12 +98,14 @@ const char* domain_name(Domain domain) {
       return "evenodd";
     case Domain::painted:
       return "painted";
+    case Domain::outside:
+      return "outside";
   }
   return "?";
 }
 
 std::optional<Domain> domain_named(const std::string& name) {
-  for (Domain d : {Domain::box, Domain::filled, Domain::evenodd, Domain::painted})
+  for (Domain d : kDomains)
     if (name == domain_name(d)) return d;
   return std::nullopt;
 }
@@ -113,6 +115,7 @@ std::vector<char> domain_triangles(const Classification& c, Domain domain) {
   std::vector<char> keep(face.size(), 1);
   for (std::size_t t = 0; t < face.size(); ++t) {
     if (domain == Domain::evenodd) keep[t] = c.faces.depth[face[t]] % 2 == 1;
+    if (domain == Domain::outside) keep[t] = c.faces.depth[face[t]] % 2 == 0;
     if (domain == Domain::filled) keep[t] = c.filled.at(face[t]) >= 0;
     if (domain == Domain::painted) keep[t] = c.visible.at(face[t]) >= 0;
   }

@@ -46,11 +46,14 @@ struct Classification {
 };
 
 // Which triangles a mesh keeps: the whole box, the faces some filled shape covers (the shape as
-// it is seen, the background gone), the even–odd inside of all curves (odd depth), or the faces
-// some fill or stroke paints: the public curvemesh::Domain of Parameters.
+// it is seen, the background gone), the even–odd inside of all curves (odd depth), the faces
+// some fill or stroke paints, or the even–odd outside (even depth): the public curvemesh::Domain
+// of Parameters.
 using Domain = curvemesh::Domain;
+inline constexpr Domain kDomains[] = {Domain::box, Domain::filled, Domain::evenodd, Domain::painted,
+                                      Domain::outside};
 const char* domain_name(Domain domain);
-// "box", "filled", "evenodd", "painted"; nothing for another name.
+// "box", "filled", "evenodd", "painted", "outside"; nothing for another name.
 std::optional<Domain> domain_named(const std::string& name);
 
 // Per triangle, whether it is in the domain. `filled` and `painted` need a classification of the

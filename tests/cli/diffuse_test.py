@@ -102,7 +102,7 @@ box = box_of(20, 20, 80, 80)
 for linear in (False, True):
     name = "circle " + ("straight" if linear else "cubic")
     out = path(name.replace(" ", "-") + ".png")
-    r = run("diffuse", circle, "-o", out, "--width", "120", *(["--linear"] if linear else []))
+    r = run("diffuse", circle, "-o", out, "--width", "120", *(["--straight"] if linear else []))
     check(f"{name}: exit 0", r.returncode == 0, r.stderr)
     check(f"{name}: times printed", all(s in r.stdout for s in ("meshing", "assembly", "solve", "rasterization")),
           r.stdout)

@@ -48,7 +48,7 @@ def read_json(r):
 
 
 # The paper's set-up, curved and straight.
-for mode, extra in (("curved", []), ("straight", ["--linear"])):
+for mode, extra in (("curved", []), ("straight", ["--straight"])):
     vtu, deformed, png = path(f"{mode}.vtu"), path(f"{mode}-deformed.vtu"), path(f"{mode}.png")
     r = run(svg, "-o", vtu, "--deformed", deformed, "--png", png, "--width", "300", "--probe", "50", "90", "--json",
             *extra)

@@ -11,6 +11,7 @@ nodes; bad input and usage errors exit 1 and 2 with a message.
 usage: fem_test.py CURVEMESH_BINARY EXAMPLES_DIR
 """
 import json
+import re
 import os
 import subprocess
 import sys
@@ -97,14 +98,25 @@ try:
 except Exception as e:  # noqa: BLE001
     check("OBJ readable by meshio", False, repr(e))
 
-r = run("solve", "inflate", drawing, "--linear", "-o", vtu, "--surface", ply)
-check("solve inflate --linear exits 0", r.returncode == 0, r.stderr[-500:])
+r = run("solve", "inflate", drawing, "--straight", "-o", vtu, "--surface", ply)
+check("solve inflate --straight exits 0", r.returncode == 0, r.stderr[-500:])
 try:
     m1 = meshio.read(vtu)
-    check("--linear: straight triangles", "triangle" in m1.cells_dict, str(m1.cells_dict.keys()))
+    check("--straight: straight triangles", "triangle" in m1.cells_dict, str(m1.cells_dict.keys()))
     check("PLY written", open(ply).read(3) == "ply", "")
 except Exception as e:  # noqa: BLE001
-    check("--linear VTU readable", False, repr(e))
+    check("--straight VTU readable", False, repr(e))
+
+# The solvers' domains are mesh's, by the same names: a stroke-only icon's painted domain is the
+# triangles `mesh --domain painted` keeps.
+icon = os.path.join(examples, "stroked-icon.svg")
+r = run("solve", "inflate", icon, "--domain", "painted", "-o", vtu)
+m_icon = re.search(r"(\d+) triangles in the domain", r.stderr)
+r2 = run("mesh", icon, "--domain", "painted", "-o", os.path.join(root, "icon.msh"))
+m_mesh = re.search(r"(\d+) triangles of order 3", r2.stdout + r2.stderr)
+check("solve --domain painted: the triangles of mesh --domain painted",
+      r.returncode == 0 and r2.returncode == 0 and m_icon and m_mesh and m_icon.group(1) == m_mesh.group(1),
+      r.stderr[-400:] + r2.stderr[-400:])
 
 bad = os.path.join(root, "bad.svg")
 with open(bad, "w") as f:
@@ -113,6 +125,7 @@ for args, code, what in ((["solve", "inflate", os.path.join(root, "missing.svg")
                          (["solve", "inflate", bad, "-o", vtu], 1, "malformed SVG"),
                          (["solve", "inflate", os.path.join(examples, "open-curves.svg"), "-o", vtu], None, "open curves"),
                          (["solve", "inflate", drawing, "--domain", "nowhere"], 2, "bad --domain"),
+                         (["solve", "inflate", drawing, "--domain", "inside"], 2, "--domain inside (evenodd's name)"),
                          (["solve"], 2, "no problem named")):
     r = run(*args)
     if code is None:

@@ -149,6 +149,18 @@ r, out, stats = mesh("box", hole, "--regions")
 check("square with a hole: the white circle is painted over the square",
       [g["name"] for g in stats["regions"]] == ["background", "rect#1", "circle#2"]
       and stats["regions"][2]["fill"] == "#ffffff", stats.get("regions"))
+# outside is evenodd's complement: the two meshes share the box's triangles between them.
+box_triangles = len(triangles_of(read(out + ".msh")))
+r_in, out_in, _ = mesh("evenodd-plain", hole, "--domain", "evenodd")
+r_out, out_out, stats_out = mesh("outside", hole, "--domain", "outside", "--regions")
+check("--domain outside: exit 0", r_out.returncode == 0 and r_in.returncode == 0, r_out.stderr + r_in.stderr)
+if r_out.returncode == 0 and r_in.returncode == 0:
+    inside_t, outside_t = len(triangles_of(read(out_in + ".msh"))), len(triangles_of(read(out_out + ".msh")))
+    check("--domain outside and evenodd share the box's triangles between them",
+          inside_t + outside_t == box_triangles and 0 < outside_t < box_triangles, (inside_t, outside_t, box_triangles))
+    check("--domain outside on a square with a hole: the margin and the hole, not the ring",
+          [g["name"] for g in stats_out["regions"]] == ["background", "circle#2"], stats_out.get("regions"))
+    certify("--domain outside", out_out + ".msh")
 
 # --- the area of a filled circle -------------------------------------------------------------
 # The reader's cubics lie within 1e-9·r of the circle and the curved triangles follow them, so the

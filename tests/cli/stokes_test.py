@@ -6,7 +6,7 @@ The VTU must read in meshio with finite velocity (z = 0), pressure and speed (= 
 every node; the velocity must vanish on every wall node (the drawing's lines and the box's top
 and bottom sides, taken from `curvemesh mesh` of the same drawing, which meshes it the same way)
 and follow the parabolic inflow on the left side; a region closed off by curves holds fluid at
-rest; output is deterministic; --linear and the PNG work; bad input exits 1 with a message and
+rest; output is deterministic; --straight and the PNG work; bad input exits 1 with a message and
 bad options exit 2.
 
 usage: stokes_test.py CURVEMESH_BINARY EXAMPLES_DIR
@@ -82,7 +82,7 @@ def points_at(points, where):
 
 
 results = {}
-for name, extra in (("curved", []), ("linear", ["--linear"])):
+for name, extra in (("curved", []), ("straight", ["--straight"])):
     vtu, png = path(f"{name}.vtu"), path(f"{name}.png")
     r = run("solve", "stokes", drawing, "-o", vtu, "--png", png, "--width", "240", "--inflow-speed", "2", *extra)
     check(f"{name}: exit 0", r.returncode == 0, r.stderr)
@@ -135,18 +135,18 @@ for name, extra in (("curved", []), ("linear", ["--linear"])):
           f"{len(pocket)} nodes, highest speed {s[pocket].max() if len(pocket) else None}")
     results[name] = m
 
-if "curved" in results and "linear" in results:
+if "curved" in results and "straight" in results:
     # The same mesh with another map: the straight triangles' nodes are the cubic ones' corners,
     # and the flows differ there.
-    mc, ml = results["curved"], results["linear"]
-    check("linear: fewer nodes (corners only)", len(ml.points) < len(mc.points),
+    mc, ml = results["curved"], results["straight"]
+    check("straight: fewer nodes (corners only)", len(ml.points) < len(mc.points),
           f"{len(ml.points)} vs {len(mc.points)}")
     corner_of = {tuple(x): i for i, x in enumerate(mc.points[:, :2].tolist())}
     found = [corner_of.get(tuple(x)) for x in ml.points[:, :2].tolist()]
-    check("linear: its nodes are nodes of the cubic mesh", all(i is not None for i in found))
+    check("straight: its nodes are nodes of the cubic mesh", all(i is not None for i in found))
     if all(i is not None for i in found):
         difference = np.abs(mc.point_data["speed"][found] - ml.point_data["speed"]).max()
-        check("linear: another flow", difference > 1e-6 * mc.point_data["speed"].max(), f"difference {difference}")
+        check("straight: another flow", difference > 1e-6 * mc.point_data["speed"].max(), f"difference {difference}")
 
 # A drawing with nothing in the box: Poiseuille flow, which P2-P1 holds exactly,
 #   u = 4 U s (1 - s) with s = (y - y0) / H,   p = 8 mu U / H^2 (x1 - x).

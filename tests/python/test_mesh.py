@@ -383,7 +383,7 @@ def test_regions_domain_and_stop_after_as_on_the_command_line(examples, run_cli,
         assert (tmp_path / "py.msh").read_bytes() == (tmp_path / "cli.msh").read_bytes(), options
     assert curvemesh.mesh(svg, stop_after="triangulate").order == 1
     assert len(curvemesh.mesh(svg, domain="filled").triangles) < len(curvemesh.mesh(svg).triangles)
-    with pytest.raises(ValueError, match="--domain .'inside'. must be one of box, filled, evenodd, painted"):
+    with pytest.raises(ValueError, match="--domain .'inside'. must be one of box, filled, evenodd, painted, outside"):
         curvemesh.mesh(svg, domain="inside")
     with pytest.raises(TypeError):
         curvemesh.mesh(svg, regions="yes")
