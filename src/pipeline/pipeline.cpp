@@ -165,6 +165,23 @@ bool reads_paint(const Parameters& p) {
 
 // The faces of the finished mesh, the fills over them and the part given out (Parameters'
 // regions and domain).
+// Strokes narrower than μ paint nothing the mesh shows (regions::ClassifyOptions): said once, with
+// the narrowest and the μ that would keep it.
+void warn_narrow_strokes(const Result& r, const regions::ClassifyOptions& c,
+                         const std::function<void(const std::string&)>& warn) {
+  int count = 0;
+  double narrowest = std::numeric_limits<double>::infinity();
+  for (const svg::FillLayer& layer : r.soup.fills)
+    if (regions::too_narrow(layer, c)) ++count, narrowest = std::min(narrowest, layer.width);
+  if (count == 0) return;
+  std::ostringstream s;
+  s << count << " stroke" << (count == 1 ? " is" : "s are") << " narrower than --mu (" << r.parameters.mu_rel
+    << " of the drawing's diagonal), down to " << narrowest / r.resolved.d
+    << " of it: the mesh cannot keep their two sides apart, and they paint nothing in it; a --mu and --epsilon "
+       "below half that would resolve them";
+  warn(s.str());
+}
+
 void paint(Result& r, const std::function<void(const std::string&)>& warn) {
   const Parameters& o = r.parameters;
   if (!o.regions && o.domain == Domain::box) return;
@@ -179,6 +196,8 @@ void paint(Result& r, const std::function<void(const std::string&)>& warn) {
     regions::ClassifyOptions c;
     c.clearance = r.resolved.features.epsilon;
     c.resolution = 1e-10 * r.resolved.d;
+    c.min_stroke_width = r.resolved.features.mu;
+    warn_narrow_strokes(r, c, warn);
     try {
       r.classification = regions::classify(whole, r.soup.fills, c, r.soup.clips);
     } catch (const regions::Undecided& e) {

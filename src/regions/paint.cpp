@@ -113,6 +113,10 @@ bool covers(const Outline& outline, const svg::FillLayer& layer, const FaceSampl
 
 }  // namespace
 
+bool too_narrow(const svg::FillLayer& layer, const ClassifyOptions& options) {
+  return layer.stroke && layer.width < options.min_stroke_width;
+}
+
 Classification classify(const io::HighOrderMesh& mesh, const std::vector<svg::FillLayer>& fills,
                         const ClassifyOptions& options, const std::vector<svg::ClipPath>& clips) {
   Classification c;
@@ -154,7 +158,7 @@ Classification classify(const io::HighOrderMesh& mesh, const std::vector<svg::Fi
     // The topmost covering layer: walk down the paint order, stop at the first that covers (and
     // under a stroke, go on to the first fill that does).
     for (int l = static_cast<int>(fills.size()) - 1; l >= 0; --l) {
-      if (c.visible[f] >= 0 && fills[l].stroke) continue;
+      if ((c.visible[f] >= 0 && fills[l].stroke) || too_narrow(fills[l], options)) continue;
       const auto& layer_clips = fills[l].clips;
       if (covers(outlines[l], fills[l], samples[f], options, l, f) &&
           std::all_of(layer_clips.begin(), layer_clips.end(), [&](int k) { return in_clip(k, l, f); })) {

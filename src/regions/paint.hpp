@@ -28,7 +28,14 @@ struct ClassifyOptions {
   double clearance = 0;
   // Below this distance (absolute) a point counts as lying on an outline.
   double resolution = 0;
+  // A stroke narrower than this (absolute; FillLayer::width) paints no face: the mesh does not keep
+  // its two sides apart (μ), and the faces between them, where there are any, are slivers of
+  // whatever lies along the stroke, not the stroke.
+  double min_stroke_width = 0;
 };
+
+// Whether layer `layer` of `fills` is one classify leaves out (a stroke below min_stroke_width).
+bool too_narrow(const svg::FillLayer& layer, const ClassifyOptions& options);
 
 // Thrown when a face's side of a shape's outline cannot be decided.
 class Undecided : public std::runtime_error {

@@ -70,6 +70,7 @@ struct FillLayer {
   std::vector<std::vector<CubicBezier>> subpaths;  // each a closed loop
   Box2 bounds;                                     // of the control points of every subpath
   bool stroke = false;                             // the area of the element's stroke
+  double width = 0;  // a stroke's: its width where narrowest, in the root's user space
   // The clip paths the element is drawn through (indices into FeatureSoup::clips, its own and its
   // ancestors'): the painted set is the shape's inside that is inside every one of them.
   std::vector<int> clips = {};

@@ -901,6 +901,12 @@ void Reader::emit_stroke_area(pugi::xml_node node, int source, const std::vector
                                            ? stroke_outline(mapped(subpaths), ctx.stroke_style)
                                            : mapped(stroke_outline(subpaths, ctx.stroke_style));
   FillLayer layer{source, ctx.stroke, FillRule::nonzero, {}, {}, true};
+  // A transform draws the width as its linear part maps a vector: narrowest along the direction it
+  // shrinks most, by its smaller singular value |det| / σ_max.
+  const Affine& m = ctx.ctm;
+  const double sum = m.a * m.a + m.b * m.b + m.c * m.c + m.d * m.d, det = std::abs(m.a * m.d - m.b * m.c);
+  const double largest = std::sqrt((sum + std::sqrt(std::max(0.0, sum * sum - 4 * det * det))) / 2);
+  layer.width = ctx.stroke_style.width * (ctx.stroke_style.non_scaling ? 1.0 : largest > 0 ? det / largest : 0.0);
   for (const Subpath& sp : outline) {
     for (const CubicBezier& c : sp.segments) {
       for (const Vec2& q : c.p)

@@ -164,6 +164,8 @@ with open(hairline, "w") as f:
 r7 = run("mesh", hairline, "-o", os.path.join(tmp.name, "hairline.msh"), "--domain", "painted")
 check("a hairline's painted domain: exit 1, naming --mu rather than a drawing without strokes",
       r7.returncode == 1 and "--mu" in r7.stderr and "filled or stroked" not in r7.stderr, r7.stderr)
+check("a hairline: the warning says it is narrower than --mu and paints nothing",
+      "1 stroke is narrower than --mu" in r7.stderr and "paint nothing" in r7.stderr, r7.stderr)
 r8 = run("mesh", hairline, "-o", os.path.join(tmp.name, "hairline-fine.msh"), "--domain", "painted",
          "--mu", "0.0002", "--epsilon", "0.0004")
 check("the same hairline with a finer envelope meshes", r8.returncode == 0, r8.stderr[-800:])

@@ -492,6 +492,24 @@ TEST(StrokeReader, NonScalingStrokeKeepsItsWidthUnderATransform) {
   EXPECT_NEAR(band_height(R"(vector-effect="non-scaling-stroke")"), 2, 1e-12);
 }
 
+// A stroke layer's width is where the transform draws it narrowest: its smaller singular value
+// times stroke-width (scale(10 3): 3; a rotation changes nothing; a shear x' = x + y, whose
+// singular values are the golden ratio and its inverse: 1/φ); non-scaling, stroke-width itself.
+TEST(StrokeReader, AStrokeLayerKnowsItsNarrowestWidth) {
+  const auto width = [](const std::string& attributes) {
+    const std::string svg = R"svg(<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">
+        <path d="M 1 1 L 9 1" fill="none" stroke="#000" stroke-width="2" )svg" + attributes + "/></svg>";
+    svg::ReadOptions o;
+    o.strokes_as_areas = true;
+    return svg::read_svg(svg, o).fills.at(0).width;
+  };
+  EXPECT_NEAR(width(""), 2, 1e-12);
+  EXPECT_NEAR(width(R"x(transform="scale(10 3)")x"), 6, 1e-12);
+  EXPECT_NEAR(width(R"x(transform="rotate(30) scale(3)")x"), 6, 1e-12);
+  EXPECT_NEAR(width(R"x(transform="matrix(1 0 1 1 0 0)")x"), 2 * (std::sqrt(5.0) - 1) / 2, 1e-12);
+  EXPECT_NEAR(width(R"x(transform="scale(10 3)" vector-effect="non-scaling-stroke")x"), 2, 1e-12);
+}
+
 TEST(StrokeReader, StrokePropertiesParse) {
   svg::StrokeStyle s;
   EXPECT_TRUE(svg::apply_stroke_declaration("stroke-width", "3px", 100, s));
