@@ -1,5 +1,6 @@
 #include "geometry/envelope.hpp"
 
+#include <stdexcept>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -26,8 +27,10 @@ double distance(const Vec2& p, const Vec2& a, const Vec2& b) {
 
 }  // namespace
 
-SegmentEnvelope::SegmentEnvelope(std::vector<std::array<Vec2, 2>> segments, double epsilon)
-    : segments_(std::move(segments)), epsilon_(epsilon) {
+SegmentEnvelope::SegmentEnvelope(std::vector<std::array<Vec2, 2>> segments, double epsilon, std::vector<int> groups)
+    : segments_(std::move(segments)), groups_(std::move(groups)), epsilon_(epsilon) {
+  if (!groups_.empty() && groups_.size() != segments_.size())
+    throw std::invalid_argument("SegmentEnvelope: one group per segment");
   if (segments_.empty() || !(epsilon_ > 0)) return;
   Box2 box;
   for (const auto& s : segments_) {
@@ -101,9 +104,9 @@ int SegmentEnvelope::cell_of(const Vec2& p) const {
   return int(fy) * nx_ + int(fx);
 }
 
-bool SegmentEnvelope::contains(const Vec2& p) const { return one_capsule(p, p); }
+bool SegmentEnvelope::contains(const Vec2& p, int group) const { return one_capsule(p, p, group); }
 
-bool SegmentEnvelope::one_capsule(const Vec2& p, const Vec2& q) const {
+bool SegmentEnvelope::one_capsule(const Vec2& p, const Vec2& q, int group) const {
   if (accept_ <= 0) return false;
   const int c = cell_of(p);
   if (c < 0) return false;  // farther than ε from every segment
@@ -115,6 +118,7 @@ bool SegmentEnvelope::one_capsule(const Vec2& p, const Vec2& q) const {
     return false;
   };
   for (int k = start_[c]; k < start_[c + 1]; ++k) {
+    if (group != kAny && (groups_.empty() ? kAny : groups_[items_[k]]) != group) continue;
     const auto& s = segments_[items_[k]];
     if (far(p, s) || far(q, s)) continue;
     if (distance(p, s[0], s[1]) <= accept_ && distance(q, s[0], s[1]) <= accept_) return true;
@@ -122,23 +126,23 @@ bool SegmentEnvelope::one_capsule(const Vec2& p, const Vec2& q) const {
   return false;
 }
 
-bool SegmentEnvelope::covered(const Vec2& p, const Vec2& q, int depth) const {
-  return one_capsule(p, q) || halves_covered(p, q, depth);
+bool SegmentEnvelope::covered(const Vec2& p, const Vec2& q, int group, int depth) const {
+  return one_capsule(p, q, group) || halves_covered(p, q, group, depth);
 }
 
-bool SegmentEnvelope::halves_covered(const Vec2& p, const Vec2& q, int depth) const {
+bool SegmentEnvelope::halves_covered(const Vec2& p, const Vec2& q, int group, int depth) const {
   if (depth >= kMaxDepth || (q - p).norm() < min_piece_) return false;
   const Vec2 m = 0.5 * (p + q);
-  if (!contains(m)) return false;
-  return covered(p, m, depth + 1) && covered(m, q, depth + 1);
+  if (!contains(m, group)) return false;
+  return covered(p, m, group, depth + 1) && covered(m, q, group, depth + 1);
 }
 
-bool SegmentEnvelope::contains(const Vec2& p, const Vec2& q) const {
+bool SegmentEnvelope::contains(const Vec2& p, const Vec2& q, int group) const {
   // One segment near both ends covers pq, ends included: most queries end there, with one scan
   // of a cell instead of three.
-  if (one_capsule(p, q)) return true;
-  if (!contains(p) || !contains(q)) return false;
-  return halves_covered(p, q, 0);
+  if (one_capsule(p, q, group)) return true;
+  if (!contains(p, group) || !contains(q, group)) return false;
+  return halves_covered(p, q, group, 0);
 }
 
 }  // namespace curvemesh::geometry

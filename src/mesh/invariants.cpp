@@ -21,7 +21,8 @@ bool star_valid_at(const TriMesh& m, int v, const Vec2& p) {
 bool secondary_edges_inside(const TriMesh& m, const Constraints& c, int v, const Vec2& p) {
   if (m.tag(v).kind == VertexKind::free) return true;  // no tagged edge at all
   for (const TaggedEdge& e : m.tagged_edges(v))
-    if (e.feature.kind == EdgeKind::secondary && !c.envelope.contains(p, m.point(e.other))) return false;
+    if (e.feature.kind == EdgeKind::secondary && !c.envelope.contains(p, m.point(e.other), e.feature.curve))
+      return false;
   return true;
 }
 
@@ -32,7 +33,7 @@ double turning_limit(const Constraints& c) {
 bool edge_satisfies_invariants(const TriMesh& m, const Constraints& c, int a, int b) {
   const EdgeFeature* f = m.feature(a, b);
   if (!f) return true;
-  if (f->kind == EdgeKind::secondary) return c.envelope.contains(m.point(a), m.point(b));
+  if (f->kind == EdgeKind::secondary) return c.envelope.contains(m.point(a), m.point(b), f->curve);
   if (f->kind == EdgeKind::primary)
     return c.sections[f->source].turning(f->t_lo, f->t_hi) <= turning_limit(c);
   return true;

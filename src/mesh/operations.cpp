@@ -211,7 +211,8 @@ int split_edge(TriMesh& m, const Constraints& c, int a, int b, double energy_bou
       break;
   }
   if (!valid(p)) return -1;
-  if (f.kind == EdgeKind::secondary && !(c.envelope.contains(m.point(a), p) && c.envelope.contains(p, m.point(b))))
+  if (f.kind == EdgeKind::secondary &&
+      !(c.envelope.contains(m.point(a), p, f.curve) && c.envelope.contains(p, m.point(b), f.curve)))
     return -1;
 
   const int mid = m.add_vertex(p, tag);
@@ -275,7 +276,8 @@ struct CollapseTags {
     EdgeFeature f;
   };
   StarList<Moved> moved;
-  StarList<int> merged, in_envelope;
+  StarList<int> merged;
+  StarList<std::pair<int, int>> in_envelope;  // (x, the curve its edge stands for)
 };
 
 // The rules of a collapse on tags and curves alone: which vertices may move along which edge, how
@@ -295,7 +297,7 @@ bool collapse_tags(const TriMesh& m, const Constraints& c, int from, int to, Col
       if (c.sections[g.source].turning(tx, tt) > turning_limit(c)) return false;
       h = primary_edge(g, x, tx, to, tt);
     }
-    if (out && g.kind == EdgeKind::secondary) out->in_envelope.push_back(x);
+    if (out && g.kind == EdgeKind::secondary) out->in_envelope.push_back({x, g.curve});
     // Two tagged edges merge into one. A secondary edge only asks to stay inside the envelope, so
     // it may merge into any edge, which keeps the stronger tag; a curve or box side never merges
     // into another.
@@ -363,8 +365,8 @@ bool collapse_checked(TriMesh& m, const Constraints& c, int from, int to, double
         if (tri[0] == w || tri[1] == w || tri[2] == w) return false;
       }
     }
-  for (int x : tags.in_envelope)
-    if (!c.envelope.contains(m.point(to), m.point(x))) return false;
+  for (const auto& [x, curve] : tags.in_envelope)
+    if (!c.envelope.contains(m.point(to), m.point(x), curve)) return false;
 
   const bool had_edge = m.feature(from, to) != nullptr;
   for (int t : removed) m.remove_triangle(t);
@@ -590,7 +592,8 @@ bool release_secondary_edge(TriMesh& m, const Constraints& c, int a, int b) {
     const auto& tri = m.triangle(t);
     const int x = tri[0] != a && tri[0] != b ? tri[0] : tri[1] != a && tri[1] != b ? tri[1] : tri[2];
     shadowed |= m.feature(a, x) != nullptr && m.feature(x, b) != nullptr &&
-                c.envelope.contains(m.point(a), m.point(x)) && c.envelope.contains(m.point(x), m.point(b));
+                c.envelope.contains(m.point(a), m.point(x), f->curve) &&
+                c.envelope.contains(m.point(x), m.point(b), f->curve);
   }
   if (!shadowed) {
     // A vertex x that is no feature's (or only secondary features') and lies on the chord to
@@ -619,7 +622,9 @@ bool release_secondary_edge(TriMesh& m, const Constraints& c, int a, int b) {
       const Vec2 ab = m.point(b) - m.point(a), to_x = m.point(x) - m.point(a);
       const double height = std::abs(geometry::cross(ab, to_x)) / std::sqrt(chord);
       if (!(height <= 1e-9 * std::sqrt(chord))) continue;
-      if (!c.envelope.contains(m.point(a), m.point(x)) || !c.envelope.contains(m.point(x), m.point(b))) continue;
+      if (!c.envelope.contains(m.point(a), m.point(x), moved.curve) ||
+          !c.envelope.contains(m.point(x), m.point(b), moved.curve))
+        continue;
       m.clear_feature(a, b);
       if (!ax) m.set_feature(a, x, moved);
       if (!xb) m.set_feature(x, b, moved);

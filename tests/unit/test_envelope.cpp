@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 #include "geometry/envelope.hpp"
 
@@ -110,6 +111,59 @@ TEST(Envelope, NeverAcceptsASegmentThatLeaves) {
     }
   }
   EXPECT_GT(accepted, queries / 20);  // the test does exercise acceptance
+}
+
+// Two curves crossing at 3.8° come within ε of each other over 15ε around the crossing: a query
+// along one of them is in the union's envelope, and in its own curve's alone.
+TEST(Envelope, AGroupIsAnsweredByItsOwnSegments) {
+  const double eps = 0.001, slope = std::tan(3.8 * M_PI / 180);
+  const SegmentEnvelope env({{Vec2(-1, 0), Vec2(1, 0)}, {Vec2(-1, -slope), Vec2(1, slope)}}, eps, {0, 1});
+  const Vec2 a(0.005, 0.005 * slope), b(0.2, 0.2 * slope);  // along curve 1, from 0.33ε to 13ε off curve 0
+  EXPECT_TRUE(env.contains(a, b));
+  EXPECT_TRUE(env.contains(a, b, 1));
+  EXPECT_FALSE(env.contains(a, b, 0));
+  EXPECT_TRUE(env.contains(a, 0));
+  EXPECT_FALSE(env.contains(b, 0));
+  EXPECT_TRUE(env.contains(Vec2(0.5, 0), Vec2(-0.5, 0), 0));
+  EXPECT_THROW(SegmentEnvelope({{Vec2(0, 0), Vec2(1, 0)}}, eps, {0, 1}), std::invalid_argument);
+}
+
+// The property of NeverAcceptsASegmentThatLeaves for each group: what a group's query accepts is
+// within ε of that group's segments (brute force), whatever the other groups' segments nearby.
+TEST(Envelope, AGroupNeverAcceptsASegmentThatLeavesIt) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 1), n(-1, 1);
+  int accepted = 0, queries = 0;
+  for (int round = 0; round < 100; ++round) {
+    const double eps = 0.005 + 0.03 * u(rng);
+    std::vector<std::array<Vec2, 2>> segs;
+    std::vector<int> groups;
+    for (int k = 0; k < 12; ++k) {
+      const Vec2 p(u(rng), u(rng));
+      segs.push_back({p, Vec2(p + 0.3 * Vec2(n(rng), n(rng)))});
+      groups.push_back(k % 3);
+    }
+    const SegmentEnvelope env(segs, eps, groups);
+    for (int k = 0; k < 60; ++k) {
+      // Half the queries along one segment of the group asked about (most of them accepted), half
+      // between any two segments (most not).
+      const int group = k % 3;
+      const std::size_t own_segment = 3 * (rng() % 4) + group;
+      const auto& s1 = k % 2 ? segs[own_segment] : segs[rng() % segs.size()];
+      const auto& s2 = k % 2 ? segs[own_segment] : segs[rng() % segs.size()];
+      const Vec2 a = s1[0] + u(rng) * (s1[1] - s1[0]) + 1.5 * eps * Vec2(n(rng), n(rng));
+      const Vec2 b = s2[0] + u(rng) * (s2[1] - s2[0]) + 1.5 * eps * Vec2(n(rng), n(rng));
+      ++queries;
+      if (!env.contains(a, b, group)) continue;
+      ++accepted;
+      std::vector<std::array<Vec2, 2>> own;
+      for (std::size_t i = 0; i < segs.size(); ++i)
+        if (groups[i] == group) own.push_back(segs[i]);
+      for (int i = 0; i <= 1000; ++i)
+        ASSERT_LE(distance_to_union(a + (i / 1000.0) * (b - a), own), eps) << "accepted a segment that leaves its group";
+    }
+  }
+  EXPECT_GT(accepted, queries / 10);
 }
 
 TEST(Envelope, SubSegmentsOfTheInputAreAlwaysAccepted) {

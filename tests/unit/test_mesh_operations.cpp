@@ -505,6 +505,58 @@ TEST(MeshOperations, SecondaryChordIsReleasedOnlyWhenThePathBesideItStaysInTheEn
   EXPECT_NE(outside.mesh.feature(0, 1), nullptr);
 }
 
+// The chord a–b stands for curve 0, the path a–x–b beside it for curve 1, a polyline from a up to
+// x, 10ε above the chord's middle, and down to b: the path is inside the union of the two
+// curves' envelopes, not inside curve 0's. Released, the chord would leave curve 0's middle 10ε
+// from any tagged edge; so it stays.
+TEST(MeshOperations, SecondaryChordStaysWhenThePathBesideItFollowsAnotherCurve) {
+  Fixture f = chord_beside_path(0.04);
+  f.constraints.envelope = geometry::SegmentEnvelope(
+      {{Vec2(0, 0), Vec2(1, 0)}, {Vec2(0, 0), Vec2(0.5, 0.04)}, {Vec2(0.5, 0.04), Vec2(1, 0)}}, 0.004, {0, 1, 1});
+  f.mesh.set_feature(0, 1, {EdgeKind::secondary, 0, 0});
+  f.mesh.set_feature(0, 2, {EdgeKind::secondary, 1, 1});
+  f.mesh.set_feature(2, 1, {EdgeKind::secondary, 1, 2});
+  EXPECT_FALSE(release_secondary_edge(f.mesh, f.constraints, 0, 1));
+  ASSERT_NE(f.mesh.feature(0, 1), nullptr);
+  // Were the path curve 0's own, the chord would go.
+  f.mesh.set_feature(0, 2, {EdgeKind::secondary, 0, 1});
+  f.mesh.set_feature(2, 1, {EdgeKind::secondary, 0, 2});
+  f.constraints.envelope = geometry::SegmentEnvelope(
+      {{Vec2(0, 0), Vec2(1, 0)}, {Vec2(0, 0), Vec2(0.5, 0.04)}, {Vec2(0.5, 0.04), Vec2(1, 0)}}, 0.004, {0, 0, 0});
+  EXPECT_TRUE(release_secondary_edge(f.mesh, f.constraints, 0, 1));
+  EXPECT_FALSE(f.mesh.structure_error());
+}
+
+// Vertex v on curve 0 (a–v–b along y = 0) collapses onto w, on curve 1 (a–w–b, 1.5ε above v):
+// its edges would merge into curve 1's, inside the union of the two envelopes but not inside
+// curve 0's, which would be left 1.5ε from the mesh. Refused; w 0.5ε above v, it goes.
+TEST(MeshOperations, ASecondaryEdgeDoesNotMergeIntoAnotherCurvesEdgeOutsideItsOwnEnvelope) {
+  for (const double height : {0.006, 0.002}) {
+    Fixture f;
+    f.constraints.envelope = geometry::SegmentEnvelope(
+        {{Vec2(0, 0), Vec2(1, 0)}, {Vec2(0, 0), Vec2(0.5, height)}, {Vec2(0.5, height), Vec2(1, 0)}}, 0.004, {0, 1, 1});
+    f.constraints.box.add(Vec2(-1, -2));
+    f.constraints.box.add(Vec2(2, 2));
+    f.constraints.max_turning = 10.0 * M_PI / 180;
+    VertexTag fixed, secondary;
+    fixed.kind = VertexKind::fixed;
+    secondary.kind = VertexKind::secondary;
+    const int a = f.mesh.add_vertex(Vec2(0, 0), fixed), b = f.mesh.add_vertex(Vec2(1, 0), fixed);
+    const int v = f.mesh.add_vertex(Vec2(0.5, 0), secondary), w = f.mesh.add_vertex(Vec2(0.5, height), secondary);
+    const int below = f.mesh.add_vertex(Vec2(0.5, -1), fixed), above = f.mesh.add_vertex(Vec2(0.5, 1), fixed);
+    for (const auto& t : {std::array{a, v, w}, std::array{v, b, w}, std::array{a, below, v}, std::array{v, below, b},
+                          std::array{a, w, above}, std::array{w, b, above}})
+      f.mesh.add_triangle(t[0], t[1], t[2]);
+    f.mesh.set_feature(a, v, {EdgeKind::secondary, 0, 0});
+    f.mesh.set_feature(v, b, {EdgeKind::secondary, 0, 0});
+    f.mesh.set_feature(a, w, {EdgeKind::secondary, 1, 1});
+    f.mesh.set_feature(w, b, {EdgeKind::secondary, 1, 2});
+    ASSERT_FALSE(f.mesh.structure_error());
+    EXPECT_EQ(collapse_edge(f.mesh, f.constraints, v, w, 1e9), height < 0.004) << height;
+    EXPECT_FALSE(f.mesh.structure_error());
+  }
+}
+
 // The same chord with x on no feature (a fixed point, say, or a free vertex) 1e-13 above it: the
 // secondary tag moves onto a–x–b, once, and the flat triangle can then be swapped away.
 TEST(MeshOperations, SecondaryChordMovesOntoAnUntaggedApexInsideTheEnvelope) {
