@@ -29,14 +29,14 @@ void add_solve_options(CLI::App& cmd, SolveOptions& o, Domain default_domain) {
   // The names and meanings of `mesh --domain` (Parameters' domain), one vocabulary for every command.
   std::map<std::string, Domain> names;
   const std::vector<std::string> listed = pipeline::domain_names();
-  for (std::size_t i = 0; i < listed.size(); ++i) names.emplace(listed[i], static_cast<Domain>(i));
+  for (std::size_t i = 0; i < listed.size(); ++i) names.emplace(listed[i], static_cast<Domain>(i));  // Domain's order
   cmd.add_option("--domain", o.domain,
                  "where the problem lives, as `mesh --domain` keeps it: box (the whole meshed box), filled (what the "
                  "drawing's filled elements cover), evenodd (the regions enclosed by an odd number of curves), "
                  "painted (what some fill or stroke paints, strokes read as areas) or outside (the box without "
                  "evenodd)")
       ->transform(CLI::CheckedTransformer(names))
-      ->default_str(listed.at(static_cast<std::size_t>(default_domain)));
+      ->default_str(pipeline::domain_name(default_domain));
   add_feature_options(cmd, o.parameters);
   add_memory_limit_option(cmd, o.memory_limit_gb);
 }
@@ -97,7 +97,7 @@ std::optional<Problem> prepare_problem(const SolveOptions& o, int* exit_code) {
   for (const geometry::Vec2& x : whole.nodes) p.view.add(x);
   std::optional<pipeline::DomainMesh> domain = pipeline::cut_domain(p.drawing, o.domain);
   if (!domain) {
-    say(o.input + ": the domain '" + pipeline::domain_names().at(static_cast<std::size_t>(o.domain)) + "' is empty (" +
+    say(o.input + ": the domain '" + pipeline::domain_name(o.domain) + "' is empty (" +
         pipeline::empty_domain_reason(o.domain, p.drawing.has_strokes) + "); try --domain box");
     *exit_code = kInvalidInput;
     return std::nullopt;

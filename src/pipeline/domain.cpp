@@ -6,6 +6,10 @@
 
 namespace curvemesh::pipeline {
 
+std::string domain_name(Domain domain) {
+  return regions::domain_name(domain);
+}
+
 std::vector<std::string> domain_names() {
   std::vector<std::string> names;
   for (Domain d : regions::kDomains) names.emplace_back(regions::domain_name(d));
@@ -21,8 +25,8 @@ std::optional<DomainMesh> cut_domain(const MeshedDrawing& drawing, Domain domain
 }
 
 // Why a domain came out empty. A drawing with strokes can still leave its painted domain empty:
-// where a stroke is narrower than the features stage keeps apart (mu), its two sides are merged and
-// no face lies between them.
+// a stroke narrower than μ, whose two sides the mesh does not keep apart, paints nothing in it
+// (regions::ClassifyOptions::min_stroke_width).
 std::string empty_domain_reason(Domain domain, bool has_strokes) {
   if (domain == Domain::evenodd) return "no part of the box is enclosed by its curves";
   if (domain == Domain::outside) return "every part of the box is enclosed by its curves";

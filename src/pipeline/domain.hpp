@@ -25,6 +25,9 @@ std::optional<DomainMesh> cut_domain(const MeshedDrawing& drawing, Domain domain
 // Why `domain` came out empty, for a message: "no part of the box is enclosed by its curves".
 std::string empty_domain_reason(Domain domain, bool has_strokes);
 
+// A domain's name, as every command and the Python module spell it.
+std::string domain_name(Domain domain);
+
 // The domains' names, as every command and the Python module spell them (Domain's order).
 std::vector<std::string> domain_names();
 

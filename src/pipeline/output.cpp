@@ -224,7 +224,7 @@ MeshedDrawing meshed_drawing(const Result& r) {
   out.mesh = io::curved_mesh(curved);
   out.line_curve = curves_of_lines(curved.linear, out.mesh, nullptr);  // the whole mesh: its own numbers
   out.diagonal = r.resolved.d;
-  out.has_strokes = std::any_of(r.soup.fills.begin(), r.soup.fills.end(), [](const auto& layer) { return layer.stroke; });
+  out.has_strokes = r.soup.has_stroke_areas();
   out.colours = curve_colours(r.soup);
   out.classification = r.classification;
   if (out.classification.faces.of_triangle.empty()) out.classification.faces = regions::find_faces(out.mesh);

@@ -212,10 +212,8 @@ void paint(Result& r, const std::function<void(const std::string&)>& warn) {
   r.painted = regions::paint(whole, r.classification, r.soup, o.domain, o.regions);
   const regions::Painted& p = *r.painted;
   if (p.mesh.triangle_count() == 0) {
-    const bool strokes =
-        std::any_of(r.soup.fills.begin(), r.soup.fills.end(), [](const auto& layer) { return layer.stroke; });
     throw invalid(r.name + ": the domain '" + regions::domain_name(o.domain) + "' is empty (" +
-                  empty_domain_reason(o.domain, strokes) + ")");
+                  empty_domain_reason(o.domain, r.soup.has_stroke_areas()) + ")");
   }
   Json& stats = r.stats;
   stats["domain"] = {{"name", regions::domain_name(o.domain)},

@@ -104,12 +104,6 @@ const char* domain_name(Domain domain) {
   return "?";
 }
 
-std::optional<Domain> domain_named(const std::string& name) {
-  for (Domain d : kDomains)
-    if (name == domain_name(d)) return d;
-  return std::nullopt;
-}
-
 std::vector<char> domain_triangles(const Classification& c, Domain domain) {
   const std::vector<int>& face = c.faces.of_triangle;
   std::vector<char> keep(face.size(), 1);

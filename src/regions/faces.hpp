@@ -52,9 +52,8 @@ struct Classification {
 using Domain = curvemesh::Domain;
 inline constexpr Domain kDomains[] = {Domain::box, Domain::filled, Domain::evenodd, Domain::painted,
                                       Domain::outside};
+// "box", "filled", "evenodd", "painted", "outside".
 const char* domain_name(Domain domain);
-// "box", "filled", "evenodd", "painted", "outside"; nothing for another name.
-std::optional<Domain> domain_named(const std::string& name);
 
 // Per triangle, whether it is in the domain. `filled` and `painted` need a classification of the
 // fills.

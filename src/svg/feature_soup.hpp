@@ -107,6 +107,8 @@ struct FeatureSoup {
 
   // Tight bounding box of every curve and point (empty for an empty soup).
   Box2 bounds() const;
+  // Whether some stroke was read as an area (a FillLayer::stroke).
+  bool has_stroke_areas() const;
 };
 
 }  // namespace curvemesh::svg

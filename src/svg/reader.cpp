@@ -901,12 +901,8 @@ void Reader::emit_stroke_area(pugi::xml_node node, int source, const std::vector
                                            ? stroke_outline(mapped(subpaths), ctx.stroke_style)
                                            : mapped(stroke_outline(subpaths, ctx.stroke_style));
   FillLayer layer{source, ctx.stroke, FillRule::nonzero, {}, {}, true};
-  // A transform draws the width as its linear part maps a vector: narrowest along the direction it
-  // shrinks most, by its smaller singular value |det| / σ_max.
-  const Affine& m = ctx.ctm;
-  const double sum = m.a * m.a + m.b * m.b + m.c * m.c + m.d * m.d, det = std::abs(m.a * m.d - m.b * m.c);
-  const double largest = std::sqrt((sum + std::sqrt(std::max(0.0, sum * sum - 4 * det * det))) / 2);
-  layer.width = ctx.stroke_style.width * (ctx.stroke_style.non_scaling ? 1.0 : largest > 0 ? det / largest : 0.0);
+  // A transform draws the width narrowest along the direction it shrinks most.
+  layer.width = ctx.stroke_style.width * (ctx.stroke_style.non_scaling ? 1.0 : ctx.ctm.smallest_scale());
   for (const Subpath& sp : outline) {
     for (const CubicBezier& c : sp.segments) {
       for (const Vec2& q : c.p)
@@ -1192,6 +1188,10 @@ void Reader::add_to_soup(PendingSubpath& sp, double tolerance) {
 }
 
 }  // namespace
+
+bool FeatureSoup::has_stroke_areas() const {
+  return std::any_of(fills.begin(), fills.end(), [](const FillLayer& layer) { return layer.stroke; });
+}
 
 Box2 FeatureSoup::bounds() const {
   Box2 b;

@@ -1,5 +1,6 @@
 #include "svg/transform.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -26,6 +27,12 @@ Affine Affine::rotate_deg(double angle_deg) {
     s = std::sin(rad), c = std::cos(rad);
   }
   return {c, s, -s, c, 0, 0};
+}
+
+double Affine::smallest_scale() const {
+  const double sum = a * a + b * b + c * c + d * d, det = std::abs(determinant());
+  const double largest = std::sqrt((sum + std::sqrt(std::max(0.0, sum * sum - 4 * det * det))) / 2);
+  return largest > 0 ? det / largest : 0.0;
 }
 
 bool Affine::is_finite() const {

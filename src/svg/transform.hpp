@@ -21,6 +21,8 @@ struct Affine {
             b * o.e + d * o.f + f};
   }
   double determinant() const { return a * d - b * c; }
+  // How much the linear part shrinks a vector at most: its smaller singular value, |det| / σ_max.
+  double smallest_scale() const;
   bool is_finite() const;
 };
 
