@@ -474,16 +474,26 @@ TEST(MeshOperations, SmoothingLowersTheEnergyOfAFreeVertex) {
 namespace curvemesh::mesh {
 namespace {
 
-// A secondary chord a–b with a flat triangle a–b–x above it whose other sides are tagged too.
-Fixture chord_beside_path(double x_height) {
+// An empty mesh in the box [−1, 2] × [−2, 2], its input the secondary segments of `envelope`.
+Fixture around_segments(geometry::SegmentEnvelope envelope) {
   Fixture f;
-  f.constraints.envelope = geometry::SegmentEnvelope({{Vec2(0, 0), Vec2(1, 0)}}, 0.004);
+  f.constraints.envelope = std::move(envelope);
   f.constraints.box.add(Vec2(-1, -2));
   f.constraints.box.add(Vec2(2, 2));
   f.constraints.max_turning = 10.0 * M_PI / 180;
-  VertexTag fixed, secondary;
-  fixed.kind = VertexKind::fixed;
-  secondary.kind = VertexKind::secondary;
+  return f;
+}
+
+VertexTag tag_of_kind(VertexKind kind) {
+  VertexTag tag;
+  tag.kind = kind;
+  return tag;
+}
+
+// A secondary chord a–b with a flat triangle a–b–x above it whose other sides are tagged too.
+Fixture chord_beside_path(double x_height) {
+  Fixture f = around_segments(geometry::SegmentEnvelope({{Vec2(0, 0), Vec2(1, 0)}}, 0.004));
+  const VertexTag fixed = tag_of_kind(VertexKind::fixed), secondary = tag_of_kind(VertexKind::secondary);
   const int a = f.mesh.add_vertex(Vec2(0, 0), fixed), b = f.mesh.add_vertex(Vec2(1, 0), fixed);
   const int x = f.mesh.add_vertex(Vec2(0.5, x_height), secondary), y = f.mesh.add_vertex(Vec2(0.5, -1), VertexTag{});
   f.mesh.add_triangle(a, b, x);
@@ -532,15 +542,9 @@ TEST(MeshOperations, SecondaryChordStaysWhenThePathBesideItFollowsAnotherCurve) 
 // curve 0's, which would be left 1.5ε from the mesh. Refused; w 0.5ε above v, it goes.
 TEST(MeshOperations, ASecondaryEdgeDoesNotMergeIntoAnotherCurvesEdgeOutsideItsOwnEnvelope) {
   for (const double height : {0.006, 0.002}) {
-    Fixture f;
-    f.constraints.envelope = geometry::SegmentEnvelope(
-        {{Vec2(0, 0), Vec2(1, 0)}, {Vec2(0, 0), Vec2(0.5, height)}, {Vec2(0.5, height), Vec2(1, 0)}}, 0.004, {0, 1, 1});
-    f.constraints.box.add(Vec2(-1, -2));
-    f.constraints.box.add(Vec2(2, 2));
-    f.constraints.max_turning = 10.0 * M_PI / 180;
-    VertexTag fixed, secondary;
-    fixed.kind = VertexKind::fixed;
-    secondary.kind = VertexKind::secondary;
+    Fixture f = around_segments(geometry::SegmentEnvelope(
+        {{Vec2(0, 0), Vec2(1, 0)}, {Vec2(0, 0), Vec2(0.5, height)}, {Vec2(0.5, height), Vec2(1, 0)}}, 0.004, {0, 1, 1}));
+    const VertexTag fixed = tag_of_kind(VertexKind::fixed), secondary = tag_of_kind(VertexKind::secondary);
     const int a = f.mesh.add_vertex(Vec2(0, 0), fixed), b = f.mesh.add_vertex(Vec2(1, 0), fixed);
     const int v = f.mesh.add_vertex(Vec2(0.5, 0), secondary), w = f.mesh.add_vertex(Vec2(0.5, height), secondary);
     const int below = f.mesh.add_vertex(Vec2(0.5, -1), fixed), above = f.mesh.add_vertex(Vec2(0.5, 1), fixed);
