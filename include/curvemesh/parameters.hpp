@@ -67,6 +67,8 @@ struct CURVEMESH_API Parameters {
   // Not the method's: what the run gives out.
   bool regions = false;                     // --regions: triangles tagged by the element painted on them
   Strokes strokes = Strokes::lines;         // --strokes: a stroke as its centre line or as its area
+  double min_stroke_width_rel = 5e-4;       // --min-stroke-width: strokes as areas narrower than this paint
+                                            // nothing; μ and ε shrink to keep the sides of every wider one
   Domain domain = Domain::box;              // --domain: the part of the box meshed
   StopAfter stop_after = StopAfter::curve;  // --stop-after: the last stage (optimize when order is 1)
 

@@ -25,15 +25,15 @@ std::optional<DomainMesh> cut_domain(const MeshedDrawing& drawing, Domain domain
 }
 
 // Why a domain came out empty. A drawing with strokes can still leave its painted domain empty:
-// a stroke narrower than μ, whose two sides the mesh does not keep apart, paints nothing in it
+// a stroke narrower than --min-stroke-width paints nothing in it
 // (regions::ClassifyOptions::min_stroke_width).
 std::string empty_domain_reason(Domain domain, bool has_strokes) {
   if (domain == Domain::evenodd) return "no part of the box is enclosed by its curves";
   if (domain == Domain::outside) return "every part of the box is enclosed by its curves";
   if (domain == Domain::filled) return "nothing of the drawing is filled";
   if (has_strokes)
-    return "nothing of the drawing is filled, and its strokes are narrower than the mesh resolves: their sides lie "
-           "within --mu of one another; try a smaller --mu and --epsilon";
+    return "nothing of the drawing is filled, and its strokes are narrower than --min-stroke-width; a smaller "
+           "--min-stroke-width keeps them";
   return "nothing of the drawing is filled or stroked";
 }
 

@@ -57,6 +57,12 @@ std::vector<ParameterOption> feature_options() {
        "vector-effect: non-scaling-stroke; with --regions each stroke is a region of its own, named by its "
        "element and '.stroke', painted over the element's fill); --domain painted implies areas",
        CURVEMESH_FIELD(strokes, Strokes)},
+      {"--min-stroke-width", "--min-stroke-width", "min_stroke_width", "", "features", Kind::number, 0, kInf, true, 0,
+       {},
+       "with strokes as areas, the narrowest stroke the mesh keeps, relative to d: mu and epsilon shrink together "
+       "(below what --mu and --epsilon say) until the narrowest stroke at least this wide is 3 mu wide, so that its "
+       "two sides and its fill's outline stay apart; narrower strokes paint nothing, with a warning",
+       CURVEMESH_FIELD(min_stroke_width_rel, double)},
   };
 }
 

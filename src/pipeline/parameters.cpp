@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -60,13 +61,27 @@ bool strokes_as_areas(const Parameters& p) {
   return p.strokes == Strokes::areas || p.domain == Domain::painted;
 }
 
-Resolved resolve(const Parameters& p, double diagonal) {
+// The factor μ and ε are made smaller by so that the narrowest stroke at least `floor` wide keeps
+// its sides and its fill's outline primary (kStrokeSides); 1 when every such stroke already does.
+double stroke_scale(double mu, const std::vector<double>& widths, double floor) {
+  double narrowest = std::numeric_limits<double>::infinity();
+  for (const double w : widths)
+    if (w >= floor) narrowest = std::min(narrowest, w);
+  return std::min(1.0, narrowest / (kStrokeSides * mu));
+}
+
+Resolved resolve(const Parameters& p, double diagonal, const std::vector<double>& stroke_widths) {
   Resolved r;
   r.d = diagonal > 0 ? diagonal : 1.0;
+  const bool areas = strokes_as_areas(p);
+  const double floor = p.min_stroke_width_rel * r.d;
+  const double scale = areas ? stroke_scale(p.mu_rel * r.d, stroke_widths, floor) : 1.0;
   features::Lengths& l = r.features;
   l.d = r.d;
-  l.mu = p.mu_rel * r.d;
-  l.epsilon = p.epsilon_rel * r.d;
+  l.mu = p.mu_rel * r.d * scale;
+  l.epsilon = p.epsilon_rel * r.d * scale;
+  // Below the floor a stroke still paints when μ resolves it anyway (a small --mu given).
+  r.min_stroke_width = areas ? std::min(floor, kStrokeSides * l.mu) : 0.0;
   l.eps_m = p.eps_m_rel * r.d;
   l.edge = p.edge_length_rel * r.d;
   l.min_edge = p.min_edge_length_rel * r.d;
@@ -87,7 +102,7 @@ Resolved resolve(const Parameters& p, double diagonal) {
   r.curve.order = p.order == 2 ? 2 : 3;
   // An order-2 edge only approximates its curve: within the secondary features' envelope ε unless
   // told otherwise, the distance every other feature of the mesh is kept within.
-  r.curve.tolerance = (p.curve_tolerance_rel > 0 ? p.curve_tolerance_rel : p.epsilon_rel) * r.d;
+  r.curve.tolerance = p.curve_tolerance_rel > 0 ? p.curve_tolerance_rel * r.d : l.epsilon;
   r.curve.min_split_length = l.min_edge;
   r.curve.stop_amips = p.curved_stop_amips;
   r.curve.max_smoothing_passes = p.max_curved_passes;

@@ -159,14 +159,21 @@ Stage stage_of(StopAfter s) {
   return Stage::curve;
 }
 
+std::vector<double> stroke_widths(const std::vector<svg::FillLayer>& fills) {
+  std::vector<double> widths;
+  for (const svg::FillLayer& layer : fills)
+    if (layer.stroke) widths.push_back(layer.width);
+  return widths;
+}
+
 bool reads_paint(const Parameters& p) {
   return p.regions || p.domain == Domain::filled || p.domain == Domain::painted;
 }
 
 // The faces of the finished mesh, the fills over them and the part given out (Parameters'
 // regions and domain).
-// Strokes narrower than μ paint nothing the mesh shows (regions::ClassifyOptions): said once, with
-// the narrowest and the μ that would keep it.
+// Strokes narrower than --min-stroke-width paint nothing the mesh shows (regions::ClassifyOptions):
+// said once, with the narrowest.
 void warn_narrow_strokes(const Result& r, const regions::ClassifyOptions& c,
                          const std::function<void(const std::string&)>& warn) {
   int count = 0;
@@ -175,10 +182,10 @@ void warn_narrow_strokes(const Result& r, const regions::ClassifyOptions& c,
     if (regions::too_narrow(layer, c)) ++count, narrowest = std::min(narrowest, layer.width);
   if (count == 0) return;
   std::ostringstream s;
-  s << count << " stroke" << (count == 1 ? " is" : "s are") << " narrower than --mu (" << r.parameters.mu_rel
-    << " of the drawing's diagonal), down to " << narrowest / r.resolved.d
-    << " of it: the mesh cannot keep their two sides apart, and they paint nothing in it; a --mu and --epsilon "
-       "below half that would resolve them";
+  s << count << " stroke" << (count == 1 ? " is" : "s are") << " narrower than --min-stroke-width ("
+    << r.parameters.min_stroke_width_rel << " of the drawing's diagonal), down to " << narrowest / r.resolved.d
+    << " of it: they paint nothing in the mesh; a --min-stroke-width below that would keep them, with a mesh "
+       "fine enough to hold their width";
   warn(s.str());
 }
 
@@ -196,7 +203,7 @@ void paint(Result& r, const std::function<void(const std::string&)>& warn) {
     regions::ClassifyOptions c;
     c.clearance = r.resolved.features.epsilon;
     c.resolution = 1e-10 * r.resolved.d;
-    c.min_stroke_width = r.resolved.features.mu;
+    c.min_stroke_width = r.resolved.min_stroke_width;
     warn_narrow_strokes(r, c, warn);
     try {
       r.classification = regions::classify(whole, r.soup.fills, c, r.soup.clips);
@@ -347,8 +354,10 @@ void read_stage(Result& r, const Source& source, const Parameters& parameters, c
     svg::ReadOptions read;
     // Every length, ε_m with the others, made absolute once, against the drawing's box as read.
     bool resolved = false;
-    read.degenerate_tolerance = [&](const geometry::Box2& bounds, const geometry::Box2& canvas) {
-      r.resolved = resolve(parameters, finite_diagonal(features::drawing_box(bounds, canvas), source.name));
+    read.degenerate_tolerance = [&](const geometry::Box2& bounds, const geometry::Box2& canvas,
+                                    const std::vector<svg::FillLayer>& fills) {
+      r.resolved = resolve(parameters, finite_diagonal(features::drawing_box(bounds, canvas), source.name),
+                           stroke_widths(fills));
       resolved = true;
       return r.resolved.features.eps_m;
     };
@@ -365,7 +374,9 @@ void read_stage(Result& r, const Source& source, const Parameters& parameters, c
       r.soup = finite_soup(source.soup, source.name);
     for (const std::string& w : r.soup.warnings) warn(w);
     stats["seconds"]["read"] = seconds_since(t);
-    if (!resolved) r.resolved = resolve(parameters, finite_diagonal(features::drawing_box(r.soup), source.name));
+    if (!resolved)
+      r.resolved = resolve(parameters, finite_diagonal(features::drawing_box(r.soup), source.name),
+                           stroke_widths(r.soup.fills));
     if (last == Stage::read) return;
     report(options, Stage::features);
     t = Clock::now();
@@ -381,8 +392,11 @@ void features_json(Result& r) {
   const features::Features& f = r.features;
   int primary = 0;
   for (const auto& s : f.sections) primary += s.kind == features::Kind::primary;
-  r.stats["features"] = {
-      {"primary_sections", primary}, {"secondary_segments", f.segments.size()}, {"points", f.points.size()}};
+  // μ and ε as the stages took them: smaller than the parameters' when strokes read as areas need it.
+  const features::Lengths& l = r.resolved.features;
+  r.stats["features"] = {{"primary_sections", primary}, {"secondary_segments", f.segments.size()},
+                         {"points", f.points.size()},   {"mu_rel", l.mu / l.d},
+                         {"epsilon_rel", l.epsilon / l.d}};
 }
 
 // §4.1, first half: the exact constrained triangulation of the features in their box.

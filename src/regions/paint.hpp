@@ -28,9 +28,9 @@ struct ClassifyOptions {
   double clearance = 0;
   // Below this distance (absolute) a point counts as lying on an outline.
   double resolution = 0;
-  // A stroke narrower than this (absolute; FillLayer::width) paints no face: the mesh does not keep
-  // its two sides apart (μ), and the faces between them, where there are any, are slivers of
-  // whatever lies along the stroke, not the stroke.
+  // A stroke narrower than this (absolute; FillLayer::width) paints no face: the mesh keeps the
+  // two sides of the wider ones apart (μ is made small enough for them), not of these, and the
+  // faces between them, where there are any, are slivers of whatever lies along the stroke.
   double min_stroke_width = 0;
 };
 

@@ -18,8 +18,10 @@ struct ReadOptions {
   // points. It is a length relative to the drawing's size, asked for once the drawing is read: of
   // the tight box of its curves (before any path became a point) and its canvas. The pipeline
   // answers with pipeline::resolve's ε_m, made absolute against the diagonal every other length
-  // is. Unset: 0, no path is a point unless all its control points coincide.
-  std::function<double(const Box2& bounds, const Box2& canvas)> degenerate_tolerance;
+  // is (with the fill layers read, whose strokes' widths are lengths of the drawing too). Unset:
+  // 0, no path is a point unless all its control points coincide.
+  std::function<double(const Box2& bounds, const Box2& canvas, const std::vector<FillLayer>& fills)>
+      degenerate_tolerance;
   // Add the straight line that closes each open subpath of a filled element to the curves (not
   // degenerate ones): the edge of the filled shape becomes a feature, so the mesh's faces follow
   // the paint (regions/). Off, the curves are the drawn outlines alone.

@@ -155,20 +155,38 @@ if r9.returncode == 0:
 check("a mitred rectangle's painted area is 456 (within 1e-9)", rect_area is not None and abs(rect_area - 456) < 456e-9,
       (rect_area, r9.stderr[-500:]))
 
-# A hairline (0.1 wide in a drawing 100 across, below mu = 0.001 d): its two sides lie within mu of
-# one another and no face is left between them; the message says so, not that nothing is stroked.
+# A hairline (0.1 wide in a drawing 100 across, a tenth of the default mu): mu and epsilon shrink
+# until its two sides and its centre line stay apart, and its painted area is its width times the
+# perimeter (a closed polygon with mitred joins, every angle wide enough for the mitre limit).
+def triangle_stroke(path, width):
+    with open(path, "w") as f:
+        f.write('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">'
+                f'<path d="M10 10 L90 20 L50 90 Z" fill="none" stroke="black" stroke-width="{width}"/></svg>')
+
+
+corners = [(10, 10), (90, 20), (50, 90)]
+perimeter = sum(math.dist(corners[i], corners[(i + 1) % 3]) for i in range(3))
 hairline = os.path.join(tmp.name, "hairline.svg")
-with open(hairline, "w") as f:
-    f.write('<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">'
-            '<path d="M10 10 L90 20 L50 90 Z" fill="none" stroke="black" stroke-width="0.1"/></svg>')
-r7 = run("mesh", hairline, "-o", os.path.join(tmp.name, "hairline.msh"), "--domain", "painted")
-check("a hairline's painted domain: exit 1, naming --mu rather than a drawing without strokes",
-      r7.returncode == 1 and "--mu" in r7.stderr and "filled or stroked" not in r7.stderr, r7.stderr)
-check("a hairline: the warning says it is narrower than --mu and paints nothing",
-      "1 stroke is narrower than --mu" in r7.stderr and "paint nothing" in r7.stderr, r7.stderr)
-r8 = run("mesh", hairline, "-o", os.path.join(tmp.name, "hairline-fine.msh"), "--domain", "painted",
-         "--mu", "0.0002", "--epsilon", "0.0004")
-check("the same hairline with a finer envelope meshes", r8.returncode == 0, r8.stderr[-800:])
+triangle_stroke(hairline, 0.1)
+hair_stats = os.path.join(tmp.name, "hairline.json")
+r7 = run("mesh", hairline, "-o", os.path.join(tmp.name, "hairline.msh"), "--domain", "painted", "--regions",
+         "--stats", hair_stats)
+hair_area = None
+if r7.returncode == 0:
+    with open(hair_stats) as f:
+        hair_area = sum(x["area"] for x in json.load(f)["regions"] if x["name"].endswith(".stroke"))
+check("a hairline a tenth of mu wide paints its width times its perimeter (within 1e-6 of it)",
+      hair_area is not None and abs(hair_area - 0.1 * perimeter) < 1e-6 * 0.1 * perimeter,
+      (hair_area, 0.1 * perimeter, r7.stderr[-500:]))
+# Narrower than --min-stroke-width (5e-4 of the diagonal): it paints nothing, and the messages say
+# which option keeps it, not that nothing is stroked.
+finer = os.path.join(tmp.name, "finer.svg")
+triangle_stroke(finer, 0.005)
+r8 = run("mesh", finer, "-o", os.path.join(tmp.name, "finer.msh"), "--domain", "painted")
+check("a stroke below --min-stroke-width: exit 1, naming the option rather than a drawing without strokes",
+      r8.returncode == 1 and "--min-stroke-width" in r8.stderr and "filled or stroked" not in r8.stderr, r8.stderr)
+check("... and the warning says it is narrower and paints nothing",
+      "1 stroke is narrower than --min-stroke-width" in r8.stderr and "paint nothing" in r8.stderr, r8.stderr)
 
 r5 = run("mesh", icon, "-o", os.path.join(tmp.name, "bad.msh"), "--strokes", "wide")
 check("--strokes refuses another value", r5.returncode == 2, r5.stderr)

@@ -271,7 +271,7 @@ def test_options_and_defaults():
         "mu", "epsilon", "eps_m", "edge_length", "min_edge_length", "min_angle", "junction_angle", "order", "linear",
         "curve_tolerance", "max_iterations", "stop_amips", "box_margin", "curved_stop_amips", "max_curved_passes",
         "features", "max_input_mb", "max_elements", "max_curves", "max_triangles", "regions", "domain", "stop_after",
-        "strokes",
+        "strokes", "min_stroke_width",
     }
     assert curvemesh.OPTIONS["regions"] is False and curvemesh.OPTIONS["domain"] == "box"
     assert curvemesh.OPTIONS["strokes"] == "lines"

@@ -30,7 +30,7 @@ std::string doc(const std::string& body) {
 
 ReadOptions options() {
   ReadOptions o;
-  o.degenerate_tolerance = [](const Box2& bounds, const Box2&) { return 1e-8 * bounds.diagonal(); };
+  o.degenerate_tolerance = [](const Box2& bounds, const Box2&, const std::vector<FillLayer>&) { return 1e-8 * bounds.diagonal(); };
   return o;
 }
 

@@ -158,4 +158,41 @@ TEST(PipelineExtremes, TinyPathsAreMeasuredAgainstTheMeshDiagonal) {
   }
 }
 
+// With strokes as areas μ and ε shrink together, only as far as the narrowest stroke at least
+// --min-stroke-width wide needs (three μ: its two sides and its fill's outline between them stay
+// μ apart); a narrower stroke moves nothing and paints nothing. Lines leave μ as given.
+TEST(PipelineExtremes, StrokesAsAreasShrinkMuToTheirNarrowestWidth) {
+  const auto svg = [](double a, double b) {
+    std::ostringstream text;
+    text << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 100 100\">"
+         << "<path d=\"M 0 0 L 100 100\" fill=\"none\" stroke=\"black\" stroke-width=\"" << a << "\"/>"
+         << "<path d=\"M 0 100 L 100 0\" fill=\"none\" stroke=\"black\" stroke-width=\"" << b << "\"/></svg>";
+    return text.str();
+  };
+  curvemesh::pipeline::Parameters p;
+  p.stop_after = curvemesh::StopAfter::triangulate;
+  p.strokes = curvemesh::Strokes::areas;
+  const auto resolved = [&](double a, double b) {
+    return pipeline::run(pipeline::Source::svg(svg(a, b), "strokes"), p).resolved;
+  };
+  const pipeline::Resolved wide = resolved(2, 3);  // both at least 3 μ = 0.003 d (about 0.42) wide
+  EXPECT_DOUBLE_EQ(wide.features.mu, p.mu_rel * wide.d);
+  EXPECT_DOUBLE_EQ(wide.features.epsilon, p.epsilon_rel * wide.d);
+  const pipeline::Resolved thin = resolved(0.12, 3);
+  EXPECT_NEAR(thin.features.mu, 0.04, 1e-12);
+  EXPECT_NEAR(thin.features.epsilon, 0.04 * p.epsilon_rel / p.mu_rel, 1e-12);
+  EXPECT_NEAR(thin.curve.tolerance, thin.features.epsilon, 1e-15);
+  EXPECT_NEAR(thin.min_stroke_width, p.min_stroke_width_rel * thin.d, 1e-15);
+  const double below = 0.5 * p.min_stroke_width_rel * wide.d;  // under the floor: left out
+  const pipeline::Resolved hair = resolved(below, 0.12);
+  EXPECT_NEAR(hair.features.mu, 0.04, 1e-12);
+  p.strokes = curvemesh::Strokes::lines;
+  const pipeline::Resolved lines = resolved(0.12, 3);
+  EXPECT_DOUBLE_EQ(lines.features.mu, p.mu_rel * lines.d);
+  // A --mu small enough for a stroke below the floor lets it paint.
+  p.strokes = curvemesh::Strokes::areas;
+  p.mu_rel = p.epsilon_rel = 1e-6;
+  EXPECT_NEAR(resolved(below, 3).min_stroke_width, 3e-6 * wide.d, 1e-15);
+}
+
 }  // namespace

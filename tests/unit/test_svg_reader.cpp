@@ -22,7 +22,7 @@ std::string doc(const std::string& body, const std::string& root_attrs = "") {
 // The reader with the paper's ε_m.
 ReadOptions paper_options() {
   ReadOptions o;
-  o.degenerate_tolerance = [](const Box2& bounds, const Box2&) {
+  o.degenerate_tolerance = [](const Box2& bounds, const Box2&, const std::vector<FillLayer>&) {
     return curvemesh::pipeline::Parameters{}.eps_m_rel * bounds.diagonal();
   };
   return o;
