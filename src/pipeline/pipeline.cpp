@@ -170,8 +170,6 @@ bool reads_paint(const Parameters& p) {
   return p.regions || p.domain == Domain::filled || p.domain == Domain::painted;
 }
 
-// The faces of the finished mesh, the fills over them and the part given out (Parameters'
-// regions and domain).
 // Strokes narrower than --min-stroke-width paint nothing the mesh shows (regions::ClassifyOptions):
 // said once, with the narrowest.
 void warn_narrow_strokes(const Result& r, const regions::ClassifyOptions& c,
@@ -189,6 +187,8 @@ void warn_narrow_strokes(const Result& r, const regions::ClassifyOptions& c,
   warn(s.str());
 }
 
+// The faces of the finished mesh, the fills over them and the part given out (Parameters'
+// regions and domain).
 void paint(Result& r, const std::function<void(const std::string&)>& warn) {
   const Parameters& o = r.parameters;
   if (!o.regions && o.domain == Domain::box) return;
