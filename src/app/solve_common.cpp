@@ -29,7 +29,8 @@ void add_solve_options(CLI::App& cmd, SolveOptions& o, Domain default_domain) {
   // The names and meanings of `mesh --domain` (Parameters' domain), one vocabulary for every command.
   std::map<std::string, Domain> names;
   const std::vector<std::string> listed = pipeline::domain_names();
-  for (std::size_t i = 0; i < listed.size(); ++i) names.emplace(listed[i], static_cast<Domain>(i));  // Domain's order
+  // domain_names() lists them in Domain's order.
+  for (std::size_t i = 0; i < listed.size(); ++i) names.emplace(listed[i], static_cast<Domain>(i));
   cmd.add_option("--domain", o.domain,
                  "where the problem lives, as `mesh --domain` keeps it: box (the whole meshed box), filled (what the "
                  "drawing's filled elements cover), evenodd (the regions enclosed by an odd number of curves), "

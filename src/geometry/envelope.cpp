@@ -1,9 +1,9 @@
 #include "geometry/envelope.hpp"
 
-#include <stdexcept>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace curvemesh::geometry {
 

@@ -61,6 +61,8 @@ bool strokes_as_areas(const Parameters& p) {
   return p.strokes == Strokes::areas || p.domain == Domain::painted;
 }
 
+namespace {
+
 // The factor μ and ε are made smaller by so that the narrowest stroke at least `floor` wide keeps
 // its sides and its fill's outline primary (kStrokeSides); 1 when every such stroke already does.
 double stroke_scale(double mu, const std::vector<double>& widths, double floor) {
@@ -69,6 +71,8 @@ double stroke_scale(double mu, const std::vector<double>& widths, double floor) 
     if (w >= floor) narrowest = std::min(narrowest, w);
   return std::min(1.0, narrowest / (kStrokeSides * mu));
 }
+
+}  // namespace
 
 Resolved resolve(const Parameters& p, double diagonal, const std::vector<double>& stroke_widths) {
   Resolved r;

@@ -1151,7 +1151,8 @@ FeatureSoup Reader::read() {
     bounds.add(sp.start);
     for (const CubicBezier& c : sp.segments) bounds.add(c.bounds());
   }
-  const double tolerance = options_.degenerate_tolerance ? options_.degenerate_tolerance(bounds, soup_.canvas, soup_.fills) : 0.0;
+  const double tolerance =
+      options_.degenerate_tolerance ? options_.degenerate_tolerance(bounds, soup_.canvas, soup_.fills) : 0.0;
   soup_.curves.reserve(curve_count_);
   for (PendingSubpath& sp : pending_) add_to_soup(sp, tolerance);
   pending_.clear();
