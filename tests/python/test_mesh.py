@@ -404,6 +404,7 @@ def test_missing_file_raises_the_command_lines_message(run_cli, tmp_path):
         (dict(edge_length=-0.1), "--edge-length (-0.1) must be a positive number"),
         (dict(mu=0), "--mu (0) must be a positive number"),
         (dict(mu=float("nan")), "--mu (nan) must be a positive number"),
+        (dict(min_stroke_width=0), "--min-stroke-width (0) must be a positive number"),
         (dict(min_angle=90), "--min-angle (90) must be in [0.1, 60]"),
         (dict(max_iterations=-1), "--max-iterations (-1) must be a non-negative integer"),
         (dict(max_curved_passes=2**40), "--max-curved-passes (1099511627776) is out of range"),
