@@ -1,7 +1,7 @@
 // Step 5 of curve(): primary edges that could not follow their curve exactly (their triangles
 // were not certified with it): the free opposite corners move out of the way, else the edge is
 // bent towards the curve as far as certified; and the distance left from an edge to its curve.
-#include "curve/builder.hpp"
+#include "curve/steps.hpp"
 
 namespace curvemesh::curve::detail {
 
@@ -24,78 +24,77 @@ Vec2 edge_point(const Vec2& p0, const Vec2& m, const Vec2& p1, double s) {
   return (1 - s) * (1 - 2 * s) * p0 + 4 * s * (1 - s) * m + s * (2 * s - 1) * p1;
 }
 
-}  // namespace
+// The triangles of edge (a, b) and the free corners opposite it, whose moves a placement on the
+// curve may need.
+struct EdgeSurroundings {
+  std::vector<int> triangles, movable, touched;  // touched: the triangles and the movable stars
+};
 
-// §4.2 step 5 for primary edge (a, b), whose triangles cannot be certified with the edge on its
-// curve. First the edge is put on its curve and the centre nodes and the free opposite corners
-// move (compass search on badness) until both triangles are certified, kept only if nothing
-// around the edge ends worse than it was, if need be after step 4's operations
-// (keep_unless_worse); failing that, the edge's two inner nodes are fitted: the largest blend
-// s·(curve) + (1 − s)·(chord) with both triangles certified and within the stop energy (or the
-// straight edge's), s by bisection (the least-squares fit to the curve along the one direction in
-// which the straight edge is known to be valid). The remaining distance is recorded in the stats.
-void Builder::fit(int a, int b) {
-  TriMesh& m = out_.linear;
-  const auto key = mesh::edge_key(a, b);
-  const int lo = std::min(a, b), hi = std::max(a, b);
-  const std::vector<int> triangles = m.edge_triangles(a, b);
-  // Everything that can change: the triangles of the edge and the stars of their free corners.
-  std::vector<int> touched = triangles, movable;
-  for (int t : triangles)
+EdgeSurroundings surroundings(const TriMesh& m, int a, int b) {
+  EdgeSurroundings e;
+  e.triangles = m.edge_triangles(a, b);
+  e.touched = e.triangles;
+  for (int t : e.triangles)
     for (int v : m.triangle(t))
       if (v != a && v != b && m.tag(v).kind == mesh::VertexKind::free) {
-        movable.push_back(v);
-        touched.insert(touched.end(), m.triangles_of(v).begin(), m.triangles_of(v).end());
+        e.movable.push_back(v);
+        e.touched.insert(e.touched.end(), m.triangles_of(v).begin(), m.triangles_of(v).end());
       }
-  std::sort(touched.begin(), touched.end());
-  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-  const Snapshot saved = snapshot(touched);
-  std::vector<Vec2> positions;
-  for (int v : movable) positions.push_back(m.point(v));
-  const auto undo = [&] {
-    restore(saved);
-    for (std::size_t k = 0; k < movable.size(); ++k) m.set_position(movable[k], positions[k]);
-  };
+  std::sort(e.touched.begin(), e.touched.end());
+  e.touched.erase(std::unique(e.touched.begin(), e.touched.end()), e.touched.end());
+  return e;
+}
 
-  // On the curve, with the centres and the free corners moved, under the journal.
+// The edge on its curve, with the centres and the free corners moved (compass search on
+// badness) until every touched triangle is certified, kept only if nothing around the edge ends
+// worse than it was, if need be after step 4's operations (keep_unless_worse).
+bool place_on_curve(Curving& cv, int a, int b, const EdgeSurroundings& e) {
+  TriMesh& m = cv.mesh;
   const auto take_back = [&] { m.rollback(); };
   const auto on_curve = [&] {
     m.open_journal();
-    curved_.set(key, true);
-    place_on_curve(lo, hi);
-    for (int t : triangles) choose_centre_of(t);
-    for (int v : movable) {
-      const Vec2 x = search_corner(v, [&](int t, double) { return badness(t); });
-      place_corner(v, x);
+    cv.form.set_follows(a, b, true);
+    cv.form.place_on_curve(std::min(a, b), std::max(a, b));
+    for (int t : e.triangles) cv.form.choose_centre(t);
+    for (int v : e.movable) {
+      const Vec2 x = search_corner(cv, v, [&](int t, double) { return cv.form.badness(t); });
+      cv.form.place_corner(v, x);
       m.set_position(v, x);  // the next corner's orientation checks see this one where it is now
     }
-    for (int t : triangles) choose_centre_of(t);
-    if (certify_all(touched)) return true;
+    for (int t : e.triangles) cv.form.choose_centre(t);
+    if (certify_all(cv, e.touched)) return true;
     take_back();
     return false;
   };
-  if (keep_unless_worse({a, b}, on_curve, take_back)) return;
+  return keep_unless_worse(cv, {a, b}, on_curve, take_back);
+}
 
-  // The fit: the largest blend towards the curve with both triangles certified and no worse
-  // than the stop energy or the straight edge's (the bare validity limit would leave an element
-  // next to degenerate there).
-  double allowed = o_.stop_amips;
-  for (int t : triangles) allowed = std::max(allowed, energy(t));
+// The fit: the largest blend s·(curve) + (1 − s)·(chord) of the edge's inner nodes with both
+// triangles certified and no worse than the stop energy or the straight edge's (the bare validity
+// limit would leave an element next to degenerate there), s by bisection: the least-squares fit
+// to the curve along the one direction in which the straight edge is known to be valid.
+void fit_towards_curve(Curving& cv, int a, int b, const EdgeSurroundings& e) {
+  TriMesh& m = cv.mesh;
+  CurvedForm& form = cv.form;
+  const int lo = std::min(a, b), hi = std::max(a, b);
+  const CurvedForm::Snapshot saved = form.snapshot(e.touched);
+  std::vector<Vec2> positions;
+  for (int v : e.movable) positions.push_back(m.point(v));
+  double allowed = cv.options.stop_amips;
+  for (int t : e.triangles) allowed = std::max(allowed, cv.energy(t));
   const auto acceptable = [&] {
-    for (int t : triangles)
-      if (!(energy(t) <= allowed)) return false;
-    return certify_all(touched);
+    for (int t : e.triangles)
+      if (!(cv.energy(t) <= allowed)) return false;
+    return certify_all(cv, e.touched);
   };
-  // (Not a structured binding: the lambda below uses them, which clang before 16 refuses.)
-  const std::pair<int, int> inner = edge_nodes(lo, hi);
-  const int first = inner.first, second = inner.second;
-  const Vec2 straight1 = nodes_[first], straight2 = nodes_[second];
-  place_on_curve(lo, hi);
-  const Vec2 curve1 = nodes_[first], curve2 = nodes_[second];
-  const auto blend = [&](double w) {
-    nodes_.set(first, straight1 + w * (curve1 - straight1));
-    nodes_.set(second, straight2 + w * (curve2 - straight2));
-    for (int t : triangles) choose_centre_of(t);
+  const auto [first, second] = form.edge_nodes(lo, hi);
+  const Vec2 straight1 = form.node(first), straight2 = form.node(second);
+  form.place_on_curve(lo, hi);
+  const Vec2 curve1 = form.node(first), curve2 = form.node(second);
+  const auto blend = [&, first = first, second = second](double w) {
+    form.set_node(first, straight1 + w * (curve1 - straight1));
+    form.set_node(second, straight2 + w * (curve2 - straight2));
+    for (int t : e.triangles) form.choose_centre(t);
   };
   // certify_all records the scaled Jacobians of each accepted blend: the last one is `good`.
   double good = 0, bad = 1;
@@ -105,36 +104,42 @@ void Builder::fit(int a, int b) {
     (acceptable() ? good : bad) = w;
   }
   if (good == 0) {
-    undo();
+    form.restore(saved);
+    for (std::size_t k = 0; k < e.movable.size(); ++k) m.set_position(e.movable[k], positions[k]);
     return;
   }
   blend(good);
-  fitted_.set(key, true);
+  form.set_fitted(a, b);
 }
 
-bool Builder::on_fitted_edge(int v) const {
-  if (fitted_.empty()) return false;
-  for (int w : out_.linear.neighbours(v))
-    if (fitted_.contains(mesh::edge_key(v, w))) return true;
-  return false;
-}
+}  // namespace
 
-int Builder::fitted_edge_of(const mesh::Triangle& tri) const {
-  for (int i = 0; i < 3; ++i)
-    if (fitted_.contains(mesh::edge_key(tri[i], tri[(i + 1) % 3]))) return i;
-  return -1;
+// §4.2 step 5 for each primary edge still straight that could follow its curve, in the order of
+// the edges (an earlier edge's repair may have removed a later one): put on its curve where
+// nothing around it ends worse, else fitted towards it. The remaining distance is recorded in the
+// statistics.
+void fit_straight_edges(Curving& cv) {
+  const TriMesh& m = cv.mesh;
+  for (const auto& [edge, f] : m.sorted_features()) {
+    const int a = edge[0], b = edge[1];
+    if (f.kind != EdgeKind::primary || !m.feature(a, b) || cv.form.follows(a, b) || !followable(m, a, b))
+      continue;
+    const EdgeSurroundings e = surroundings(m, a, b);
+    if (!place_on_curve(cv, a, b, e)) fit_towards_curve(cv, a, b, e);
+  }
 }
 
 // An upper bound of the distance from the edge to its curve: the edge's point and the curve's
-// point at the same fraction s of the edge (17 samples). Order 2: `first` is the middle node.
-double Builder::distance_to_curve(int a, int b, const mesh::EdgeFeature& f, int first, int second) const {
-  const mesh::SectionCurve& curve = c_.sections[f.source];
+// point at the same fraction s of the edge (17 samples).
+double distance_to_curve(const Curving& cv, int a, int b, const mesh::EdgeFeature& f) {
+  const mesh::SectionCurve& curve = cv.constraints.sections[f.source];
   const auto [ta, tb] = parameters(f, a, b);
-  const Vec2 &p0 = at(a), &p1 = nodes_[first], &p2 = nodes_[second], &p3 = at(b);
+  const auto [first, second] = cv.form.edge_nodes(a, b);
+  const Vec2 &p0 = cv.form.at(a), &p1 = cv.form.node(first), &p2 = cv.form.node(second), &p3 = cv.form.at(b);
   double worst = 0;
   for (int i = 0; i <= 16; ++i) {
     const double s = i / 16.0;
-    const Vec2 x = quadratic() ? edge_point(p0, p1, p3, s) : edge_point(p0, p1, p2, p3, s);
+    const Vec2 x = cv.form.quadratic() ? edge_point(p0, p1, p3, s) : edge_point(p0, p1, p2, p3, s);
     worst = std::max(worst, (x - curve.eval(ta + s * (tb - ta))).norm());
   }
   return worst;

@@ -4,37 +4,70 @@
 // operations of step 4 have repaired them; otherwise taken back, operations and all.
 #include <functional>
 
-#include "curve/builder.hpp"
+#include "curve/steps.hpp"
 
 namespace curvemesh::curve::detail {
 
-std::vector<int> Builder::vertices_near(const std::vector<int>& centres, int rings) const {
-  const TriMesh& m = out_.linear;
-  std::vector<int> near = centres;
-  std::sort(near.begin(), near.end());
-  near.erase(std::unique(near.begin(), near.end()), near.end());
+namespace {
+
+std::vector<int> sorted_unique(std::vector<int> ids) {
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  return ids;
+}
+
+// How many triangles at `vertices` are not certified.
+int uncertified(const Curving& cv, const std::vector<int>& vertices) {
+  int count = 0;
+  for (int t : triangles_at(cv.mesh, vertices)) count += cv.form.scaled(t) <= 0;
+  return count;
+}
+
+// Whether the worst energy at `vertices` is at most `bound`.
+bool at_most(const Curving& cv, const std::vector<int>& vertices, double bound) {
+  return worst_of(cv, triangles_at(cv.mesh, vertices),
+                  std::nextafter(bound, std::numeric_limits<double>::infinity())) <= bound;
+}
+
+// One round of repair around the centres: step 4's operations on the triangles at `wide` above
+// the stop energy (each tried and judged in a journal level of its own), the centres and their
+// neighbours moved, the centre nodes of the triangles at `wide` smoothed.
+void repair_round(Curving& cv, const std::vector<int>& centres, const std::vector<int>& wide) {
+  TriMesh& m = cv.mesh;
+  for (int t : triangles_at(m, wide))
+    if (m.alive(t) && cv.energy(t) > cv.options.stop_amips) improve_triangle(cv, t);
+  for (int c : centres) {
+    if (m.triangles_of(c).empty()) continue;
+    const std::vector<int> ring = m.neighbours(c);
+    move_corner(cv, c);
+    for (int w : ring) move_corner(cv, w);
+  }
+  for (int t : triangles_at(m, wide)) smooth_centre(cv, t);
+}
+
+}  // namespace
+
+std::vector<int> vertices_near(const TriMesh& m, const std::vector<int>& centres, int rings) {
+  std::vector<int> near = sorted_unique(centres);
   for (int ring = 0; ring < rings; ++ring) {
     std::vector<int> more = near;
     for (int v : near)
       for (int w : m.neighbours(v)) more.push_back(w);
-    std::sort(more.begin(), more.end());
-    more.erase(std::unique(more.begin(), more.end()), more.end());
-    near = std::move(more);
+    near = sorted_unique(std::move(more));
   }
   return near;
 }
 
-std::vector<int> Builder::triangles_at(const std::vector<int>& vertices) const {
-  const TriMesh& m = out_.linear;
+std::vector<int> triangles_at(const TriMesh& m, const std::vector<int>& vertices) {
   std::vector<int> triangles;
-  for (int v : vertices) triangles.insert(triangles.end(), m.triangles_of(v).begin(), m.triangles_of(v).end());
-  std::sort(triangles.begin(), triangles.end());
-  triangles.erase(std::unique(triangles.begin(), triangles.end()), triangles.end());
-  return triangles;
+  for (int v : vertices)
+    triangles.insert(triangles.end(), m.triangles_of(v).begin(), m.triangles_of(v).end());
+  return sorted_unique(std::move(triangles));
 }
 
-double Builder::worst_of(const std::vector<int>& triangles, double bound) const {
-  return worst_over(triangles, [this](int t, double b) { return energy(t, b); }, bound);
+double worst_of(const Curving& cv, const std::vector<int>& triangles, double bound) {
+  return worst_over(
+      triangles, [&cv](int t, double b) { return cv.energy(t, b); }, bound);
 }
 
 // `move()` makes the move under the mesh's journal (left open) and returns true, or takes itself
@@ -45,38 +78,26 @@ double Builder::worst_of(const std::vector<int>& triangles, double bound) const 
 // some for the repair). The move alone changes only the first set, so it is judged on that one:
 // the second then holds by itself.
 // When the move alone is worse, it is taken back, then made again under a journal level of its
-// own and followed by up to four rounds of repair: step 4's operations on the triangles there
-// above the stop energy (each tried and judged in a level inside that one, kept only if it
-// lowers the worst of what it changes), the centres and their neighbours moved, the centres of
-// the triangles smoothed. Still worse, the level is rolled back: the move and its repair go
-// together, and the mesh and its nodes are as they were before the move.
-bool Builder::keep_unless_worse(const std::vector<int>& centres, const std::function<bool()>& move,
-                                const std::function<void()>& undo) {
-  TriMesh& m = out_.linear;
-  const auto uncertified = [&](const std::vector<int>& vertices) {
-    int count = 0;
-    for (int t : triangles_at(vertices)) count += scaled_[t] <= 0;
-    return count;
-  };
-  const auto at_most = [&](const std::vector<int>& vertices, double bound) {
-    return worst_of(triangles_at(vertices), std::nextafter(bound, std::numeric_limits<double>::infinity())) <= bound;
-  };
-  const std::vector<int> around = vertices_near(centres, 1);
-  const double bound_around = std::max(o_.stop_amips, worst_of(triangles_at(around)));
-  const int uncertified_around = uncertified(around);
+// own and followed by up to four rounds of repair (repair_round). Still worse, the level is
+// rolled back: the move and its repair go together, and the mesh and its nodes are as they were
+// before the move.
+bool keep_unless_worse(Curving& cv, const std::vector<int>& centres, const std::function<bool()>& move,
+                       const std::function<void()>& undo) {
+  TriMesh& m = cv.mesh;
+  const double stop = cv.options.stop_amips;
+  const std::vector<int> around = vertices_near(m, centres, 1);
+  const double bound_around = std::max(stop, worst_of(cv, triangles_at(m, around)));
+  const int uncertified_around = uncertified(cv, around);
   if (!move()) return false;
-  if (uncertified(around) <= uncertified_around && at_most(around, bound_around)) {
+  if (uncertified(cv, around) <= uncertified_around && at_most(cv, around, bound_around)) {
     m.commit();
     return true;
   }
   undo();
-  const std::vector<int> wide = vertices_near(centres, 3);
-  const double bound_wide = std::max(o_.stop_amips, worst_of(triangles_at(wide)));
-  const int uncertified_wide = uncertified(wide);
-  const auto within = [&] {
-    return uncertified(wide) <= uncertified_wide && at_most(around, bound_around) && at_most(wide, bound_wide);
-  };
-  const Stats stats_before = s_;
+  const std::vector<int> wide = vertices_near(m, centres, 3);
+  const double bound_wide = std::max(stop, worst_of(cv, triangles_at(m, wide)));
+  const int uncertified_wide = uncertified(cv, wide);
+  const Stats stats_before = cv.stats;
   m.open_journal();
   if (!move()) {  // it was made once from this very state
     m.commit();
@@ -85,25 +106,18 @@ bool Builder::keep_unless_worse(const std::vector<int>& centres, const std::func
   m.commit();  // the move's own level, into the repair's
   bool good = false;
   for (int round = 0; round < 4 && !good; ++round) {
-    for (int t : triangles_at(wide))
-      if (m.alive(t) && energy(t) > o_.stop_amips) improve_triangle(t);
-    for (int c : centres) {
-      if (m.triangles_of(c).empty()) continue;
-      const std::vector<int> ring = m.neighbours(c);
-      move_corner(c);
-      for (int w : ring) move_corner(w);
-    }
-    for (int t : triangles_at(wide)) smooth_centre(t);
-    good = within();
+    repair_round(cv, centres, wide);
+    good = uncertified(cv, wide) <= uncertified_wide && at_most(cv, around, bound_around) &&
+           at_most(cv, wide, bound_wide);
   }
   if (good) {
     m.commit();
-    ++s_.repaired_moves;
+    ++cv.stats.repaired_moves;
     return true;
   }
   m.rollback();
-  s_ = stats_before;
-  ++s_.refused_moves;
+  cv.stats = stats_before;
+  ++cv.stats.refused_moves;
   return false;
 }
 

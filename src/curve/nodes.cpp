@@ -1,106 +1,22 @@
-// Steps 2 and 3 of curve(): the P3 nodes (edge nodes on the curve or at thirds of the chord,
-// centres) or the P2 nodes (an edge's middle node on the curve or at the chord's middle), the
-// Jacobian certificate of a triangle, and straightening an edge that fails it.
-#include <Eigen/LU>
-
-#include "curve/builder.hpp"
+// Steps 2 and 3 of curve(): the placed nodes certified (order 3 choosing each curved triangle's
+// centre), the edges that fail straightened, then every triangle's nodes.
+#include "curve/steps.hpp"
 
 namespace curvemesh::curve::detail {
 
-void Builder::add_edge(int a, int b) {
-  const auto key = mesh::edge_key(a, b);
-  if (first_node_.contains(key)) return;
-  const int lo = std::min(a, b), hi = std::max(a, b);
-  first_node_.set(key, static_cast<int>(nodes_.size()));
-  nodes_.push_back(Vec2::Zero());
-  if (!quadratic()) nodes_.push_back(Vec2::Zero());
-  const bool curved = followable(out_.linear, lo, hi);
-  curved_.set(key, curved);
-  if (curved) place_on_curve(lo, hi); else place_straight(lo, hi);
-}
-
-void Builder::place_straight(int lo, int hi) {
-  place_inner_nodes(lo, hi, mesh::nodes_on_chord(at(lo), at(hi), o_.order));
-}
-
-// On the curve as mesh::nodes_on_curve places them (App. C).
-void Builder::place_on_curve(int lo, int hi) {
-  const mesh::EdgeFeature& f = *out_.linear.feature(lo, hi);
-  place_inner_nodes(lo, hi, mesh::nodes_on_curve(c_.sections[f.source], f.t_lo, f.t_hi, o_.order));
-}
-
-void Builder::place_inner_nodes(int lo, int hi, const std::array<Vec2, 2>& inner) {
-  const int n = first_node_.at(mesh::edge_key(lo, hi));
-  nodes_.set(n, inner[0]);
-  if (!quadratic()) nodes_.set(n + 1, inner[1]);
-}
-
-void Builder::straighten(int a, int b) {
-  const auto key = mesh::edge_key(a, b);
-  if (!curved_.at(key)) return;
-  curved_.set(key, false);
-  place_straight(std::min(a, b), std::max(a, b));
-}
-
-// The node ids of a triangle's corners and edges in Gmsh's order (the centre, ids[9], is left
-// to the caller). Order 2: the corners and the edges' middle nodes, the rest −1.
-std::array<int, 10> Builder::corner_and_edge_nodes(const mesh::Triangle& tri) const {
-  std::array<int, 10> ids{};
-  if (quadratic()) ids.fill(-1);
-  for (int i = 0; i < 3; ++i) {
-    ids[i] = vertex_node_[tri[i]];
-    const auto [first, second] = edge_nodes(tri[i], tri[(i + 1) % 3]);
-    if (quadratic()) {
-      ids[3 + i] = first;
-      continue;
-    }
-    ids[3 + 2 * i] = first;
-    ids[4 + 2 * i] = second;
-  }
-  return ids;
-}
-
-// The two nodes of edge (a, b) in the order from a to b; order 2: its middle node twice.
-std::pair<int, int> Builder::edge_nodes(int a, int b) const {
-  const int n = first_node_.at(mesh::edge_key(a, b));
-  if (quadratic()) return {n, n};
-  return a < b ? std::pair{n, n + 1} : std::pair{n + 1, n};
-}
-
-// Index i of the triangle's curved edge (tri[i], tri[i+1]), or -1.
-int Builder::curved_edge_of(const mesh::Triangle& tri) const {
-  for (int i = 0; i < 3; ++i)
-    if (curved_.at(mesh::edge_key(tri[i], tri[(i + 1) % 3]))) return i;
-  return -1;
-}
-
-// The nodes of a triangle with its edges' nodes placed and the corners' centroid as centre.
-geometry::P3Nodes Builder::element(const mesh::Triangle& tri) const {
-  const std::array<int, 10> ids = corner_and_edge_nodes(tri);
-  geometry::P3Nodes p;
-  for (int i = 0; i < 9; ++i) p[i] = nodes_[ids[i]];
-  p[9] = (p[0] + p[1] + p[2]) / 3;
-  return p;
-}
-
-geometry::P2Nodes Builder::p2_element(const mesh::Triangle& tri) const {
-  const std::array<int, 10> ids = corner_and_edge_nodes(tri);
-  geometry::P2Nodes p;
-  for (int i = 0; i < 6; ++i) p[i] = nodes_[ids[i]];
-  return p;
-}
+namespace {
 
 // Sets p[9] to the first certified centre candidate (geometry::p3_centre_candidates; its index in
 // `choice`, its scaled Jacobian in `scaled`) and returns true, or returns false. The candidate that
 // reproduces quadratic maps exactly comes first: finite elements on the mesh need it for their
 // full order (with the paper's centre, P2 on a disk converges at L2 rate 2.35 instead of 3;
 // fem/convergence.hpp).
-bool Builder::choose_centre(geometry::P3Nodes& p, int& choice, double& scaled) const {
+bool choose_centre(geometry::P3Nodes& p, int depth, int& choice, double& scaled) {
   const std::array<Vec2, 3> centres = geometry::p3_centre_candidates(p);
   for (int k = 0; k < 3; ++k) {
     p[9] = centres[k];
     geometry::JacobianCheckOptions check;
-    check.max_depth = o_.certificate_depth;
+    check.max_depth = depth;
     const auto result = geometry::certify_jacobian(p, check);
     if (result.verdict == geometry::JacobianVerdict::positive) {
       choice = k;
@@ -111,89 +27,76 @@ bool Builder::choose_centre(geometry::P3Nodes& p, int& choice, double& scaled) c
   return false;
 }
 
-namespace {
-
-// Badness from the lattice values of nodes p (see Builder::badness).
-template <class Nodes>
-double badness_of(const Nodes& p, const geometry::P3LatticeValues& v) {
-  if (v.min_det > 0) return v.max_amips;
-  double side = 0;
-  for (int i = 0; i < 3; ++i) side = std::max(side, (p[i] - p[(i + 1) % 3]).squaredNorm());
-  return 1e12 - (side > 0 ? v.min_det / side : -1e6);
+// A triangle's element as its edges' nodes are placed (order 3 with the corners' centroid as
+// centre; order 2's six nodes in the first six).
+geometry::P3Nodes placed_element(const CurvedForm& form, const mesh::Triangle& tri) {
+  const std::array<int, 10> ids = form.corner_and_edge_nodes(tri);
+  geometry::P3Nodes p;
+  const int count = form.quadratic() ? 6 : 9;
+  for (int i = 0; i < count; ++i) p[i] = form.node(ids[i]);
+  p[9] = (p[0] + p[1] + p[2]) / 3;
+  return p;
 }
 
 }  // namespace
 
-// How far triangle t is from valid, or how good it is: its worst AMIPS energy when det J > 0 at
-// every point of the order-6 lattice, else 1e12 less the smallest det J there over the squared
-// longest side (lower is better either way; only a certificate decides validity).
-double Builder::badness(int t) const {
-  if (quadratic()) {
-    const geometry::P2Nodes p = p2_nodes_of(t);
-    return badness_of(p, geometry::p2_lattice_values(p));
-  }
-  const geometry::P3Nodes p = nodes_of(t);
-  return badness_of(p, geometry::p3_lattice_values(p));
-}
-
-// The centre of triangle t (its edge nodes placed) among the candidates: the lowest badness.
-// p3_lattice_values's max_amips is p3_max_amips's value, bit for bit (same lattice, same order).
-// Order 2 has no centre node: only the energy, as for a chosen centre.
-double Builder::choose_centre_of(int t) {
-  if (quadratic()) {
-    const geometry::P3LatticeValues v = geometry::p2_lattice_values(p2_nodes_of(t));
-    return v.min_det > 0 ? v.max_amips : std::numeric_limits<double>::quiet_NaN();
-  }
-  geometry::P3Nodes q = nodes_of(t);
-  double best = std::numeric_limits<double>::infinity();
-  double energy = std::numeric_limits<double>::quiet_NaN();
-  std::optional<Vec2> chosen;
-  for (const Vec2& c : geometry::p3_centre_candidates(q)) {
-    q[9] = c;
-    const geometry::P3LatticeValues v = geometry::p3_lattice_values(q);
-    if (const double b = badness_of(q, v); b < best) {
-      best = b;
-      energy = v.min_det > 0 ? v.max_amips : std::numeric_limits<double>::quiet_NaN();
-      chosen = c;
+// A triangle has at most one curved edge, and straightening an edge changes no other edge: the
+// centre certified here stays valid unless the triangle's own curved edge is lost.
+void certify_placed_nodes(Curving& cv) {
+  const TriMesh& m = cv.mesh;
+  CurvedForm& form = cv.form;
+  geometry::JacobianCheckOptions check;
+  check.max_depth = cv.options.certificate_depth;
+  const int count = m.triangle_slots();  // the mesh is compacted: every slot is alive
+  std::vector<Vec2> centre(count);
+  std::vector<int> choice(count, -1);
+  std::vector<double> scaled(count, 1.0);
+  for (int t = 0; t < count; ++t) {
+    const auto& tri = m.triangle(t);
+    const int curved = form.curved_edge_of(tri);
+    if (curved < 0) continue;
+    geometry::P3Nodes p = placed_element(form, tri);
+    if (form.quadratic()) {  // no centre to choose: the element is its edges'
+      const geometry::P2Nodes q{p[0], p[1], p[2], p[3], p[4], p[5]};
+      const auto cert = geometry::certify_jacobian(q, check);
+      if (cert.verdict == geometry::JacobianVerdict::positive)
+        scaled[t] = cert.scaled_jacobian;
+      else
+        form.straighten(tri[curved], tri[(curved + 1) % 3]);
+    } else if (choose_centre(p, cv.options.certificate_depth, choice[t], scaled[t])) {
+      centre[t] = p[9];
+    } else {
+      form.straighten(tri[curved], tri[(curved + 1) % 3]);
     }
   }
-  if (chosen) nodes_.set(triangle_nodes_[t][9], *chosen);
-  return energy;
+  // Final nodes and centres (triangles that lost their curved edge become straight).
+  for (int t = 0; t < count; ++t) {
+    const auto& tri = m.triangle(t);
+    const bool curved = form.curved_edge_of(tri) >= 0;
+    if (curved) cv.stats.alternative_centres += choice[t] > 0;
+    form.push_triangle(tri, curved ? centre[t] : (m.point(tri[0]) + m.point(tri[1]) + m.point(tri[2])) / 3,
+                       scaled[t]);
+    if (curved) continue;
+    // A straight element's nodes are rounded to doubles too: certify it like the others (order 3
+    // with the certificate's default depth).
+    if (form.quadratic()) {
+      form.set_scaled(t, cv.certify(t).value_or(-1.0));
+    } else {
+      const auto cert = geometry::certify_jacobian(form.p3(t));
+      form.set_scaled(t, cert.verdict == geometry::JacobianVerdict::positive ? cert.scaled_jacobian : -1.0);
+    }
+  }
 }
 
-// The scaled Jacobian of triangle t if it is certified positive.
-std::optional<double> Builder::certify(int t) const {
-  geometry::JacobianCheckOptions check;
-  check.max_depth = o_.certificate_depth;
-  const auto result = quadratic() ? geometry::certify_jacobian(p2_nodes_of(t), check)
-                                  : geometry::certify_jacobian(nodes_of(t), check);
-  if (result.verdict != geometry::JacobianVerdict::positive) return std::nullopt;
-  return result.scaled_jacobian;
-}
-
-// Certifies every one of `triangles`; only if all are certified, records their scaled
-// Jacobians and returns true.
-bool Builder::certify_all(const std::vector<int>& triangles) {
+bool certify_all(Curving& cv, const std::vector<int>& triangles) {
   std::vector<double> scaled;
   for (int t : triangles) {
-    const auto cert = certify(t);
+    const auto cert = cv.certify(t);
     if (!cert) return false;
     scaled.push_back(*cert);
   }
-  for (std::size_t k = 0; k < triangles.size(); ++k) scaled_.set(triangles[k], scaled[k]);
+  for (std::size_t k = 0; k < triangles.size(); ++k) cv.form.set_scaled(triangles[k], scaled[k]);
   return true;
-}
-
-Builder::Snapshot Builder::snapshot(const std::vector<int>& triangles) const {
-  Snapshot saved;
-  for (int t : triangles)
-    for (int id : triangle_nodes_[t])
-      if (id >= 0) saved.push_back({id, nodes_[id]});
-  return saved;
-}
-
-void Builder::restore(const Snapshot& saved) {
-  for (const auto& [id, x] : saved) nodes_.set(id, x);
 }
 
 }  // namespace curvemesh::curve::detail

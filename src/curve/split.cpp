@@ -1,5 +1,5 @@
 // Step 1 of curve(): splitting triangles until each has at most one primary edge.
-#include "curve/builder.hpp"
+#include "curve/steps.hpp"
 #include "mesh/operations.hpp"
 
 namespace curvemesh::curve::detail {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include "curve/builder.hpp"
+#include "curve/steps.hpp"
 #include "mesh/operations.hpp"
 
 namespace curvemesh::curve {
@@ -27,7 +27,9 @@ namespace {
 Vec2 line_point(const std::vector<Vec2>& nodes, double s) {
   const int order = static_cast<int>(nodes.size()) - 1;
   const auto at = [&](int i) { return i == 0 ? 0.0 : i == order ? 1.0 : double(i) / order; };
-  const auto node = [&](int i) -> const Vec2& { return i == 0 ? nodes[0] : i == order ? nodes[1] : nodes[i + 1]; };
+  const auto node = [&](int i) -> const Vec2& {
+    return i == 0 ? nodes[0] : i == order ? nodes[1] : nodes[i + 1];
+  };
   Vec2 x = Vec2::Zero();
   for (int i = 0; i <= order; ++i) {
     double w = 1;
@@ -83,7 +85,8 @@ double max_edge_distance(const CurvedMesh& cm, const mesh::Constraints& c) {
     const mesh::EdgeFeature& f = *cm.linear.feature(a, b);
     std::vector<Vec2> nodes;
     for (int k = 0; k <= cm.order; ++k) nodes.push_back(cm.nodes[line.nodes[k]]);
-    worst = std::max(worst, edge_distance(nodes, c.sections[f.source], a < b ? f.t_lo : f.t_hi, a < b ? f.t_hi : f.t_lo));
+    worst = std::max(
+        worst, edge_distance(nodes, c.sections[f.source], a < b ? f.t_lo : f.t_hi, a < b ? f.t_hi : f.t_lo));
   }
   return worst;
 }
@@ -104,7 +107,8 @@ int split_beyond_tolerance(TriMesh& m, const mesh::Constraints& c, const Options
     changed = false;
     for (const auto& [edge, f] : m.sorted_features()) {
       const int a = edge[0], b = edge[1];
-      if (f.kind != EdgeKind::primary || !followable(m, a, b) || (m.point(a) - m.point(b)).squaredNorm() <= shortest)
+      if (f.kind != EdgeKind::primary || !followable(m, a, b) ||
+          (m.point(a) - m.point(b)).squaredNorm() <= shortest)
         continue;
       if (quadratic_deviation(c.sections[f.source], f.t_lo, f.t_hi) <= o.tolerance) continue;
       m.open_journal();
@@ -120,23 +124,29 @@ int split_beyond_tolerance(TriMesh& m, const mesh::Constraints& c, const Options
   return splits;
 }
 
-double Builder::curved_deviation(int a, int b) const {
-  if (!quadratic() || !followable(out_.linear, a, b)) return 0;
-  const mesh::EdgeFeature& f = *out_.linear.feature(a, b);
-  return quadratic_deviation(c_.sections[f.source], f.t_lo, f.t_hi);
+namespace {
+
+// quadratic_deviation of the edge if it follows its curve (or will: followable), else 0.
+double curved_deviation(const Curving& cv, int a, int b) {
+  if (!cv.form.quadratic() || !followable(cv.mesh, a, b)) return 0;
+  const mesh::EdgeFeature& f = *cv.mesh.feature(a, b);
+  return quadratic_deviation(cv.constraints.sections[f.source], f.t_lo, f.t_hi);
 }
 
-bool Builder::beyond_tolerance_if_curved(int a, int b) const {
-  return quadratic() && o_.tolerance > 0 && curved_deviation(a, b) > o_.tolerance;
+}  // namespace
+
+bool beyond_tolerance_if_curved(const Curving& cv, int a, int b) {
+  return cv.form.quadratic() && cv.options.tolerance > 0 && curved_deviation(cv, a, b) > cv.options.tolerance;
 }
 
-double Builder::deviation(int a, int b) const {
-  const mesh::EdgeFeature& f = *out_.linear.feature(a, b);
-  if (curved_.at(mesh::edge_key(a, b))) return curved_deviation(a, b);
-  const auto [first, second] = edge_nodes(a, b);
-  std::vector<Vec2> nodes{at(a), at(b), nodes_[first]};
-  if (!quadratic()) nodes.push_back(nodes_[second]);
-  return edge_distance(nodes, c_.sections[f.source], a < b ? f.t_lo : f.t_hi, a < b ? f.t_hi : f.t_lo);
+double deviation(const Curving& cv, int a, int b) {
+  const mesh::EdgeFeature& f = *cv.mesh.feature(a, b);
+  if (cv.form.follows(a, b)) return curved_deviation(cv, a, b);
+  const auto [first, second] = cv.form.edge_nodes(a, b);
+  std::vector<Vec2> nodes{cv.form.at(a), cv.form.at(b), cv.form.node(first)};
+  if (!cv.form.quadratic()) nodes.push_back(cv.form.node(second));
+  return edge_distance(nodes, cv.constraints.sections[f.source], a < b ? f.t_lo : f.t_hi,
+                       a < b ? f.t_hi : f.t_lo);
 }
 
 // Rounds over the primary edges with both ends on their curve that are still beyond the
@@ -145,28 +155,31 @@ double Builder::deviation(int a, int b) const {
 // whatever their energy — the tolerance comes before quality, and step 4 runs again after. Edges
 // no longer than min_split_length, and edges with an end off its curve (splitting leaves that end
 // where it is), are left; the statistics count them.
-int Builder::meet_tolerance() {
-  if (!quadratic() || !(o_.tolerance > 0)) return 0;
-  TriMesh& m = out_.linear;
-  const double shortest = o_.min_split_length * o_.min_split_length;
+int meet_tolerance(Curving& cv) {
+  const Options& o = cv.options;
+  if (!cv.form.quadratic() || !(o.tolerance > 0)) return 0;
+  TriMesh& m = cv.mesh;
+  const double shortest = o.min_split_length * o.min_split_length;
   int made = 0;
   for (int round = 0; round < 64; ++round) {
     std::vector<std::pair<double, std::array<int, 2>>> beyond;
     for (const auto& [edge, f] : m.sorted_features())
       if (f.kind == EdgeKind::primary && followable(m, edge[0], edge[1]) &&
-          (at(edge[0]) - at(edge[1])).squaredNorm() > shortest)
-        if (const double d = deviation(edge[0], edge[1]); d > o_.tolerance) beyond.push_back({-d, edge});
-    std::stable_sort(beyond.begin(), beyond.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+          (cv.form.at(edge[0]) - cv.form.at(edge[1])).squaredNorm() > shortest)
+        if (const double d = deviation(cv, edge[0], edge[1]); d > o.tolerance) beyond.push_back({-d, edge});
+    std::stable_sort(beyond.begin(), beyond.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
     int round_made = 0;
     for (const auto& candidate : beyond) {
       const int a = candidate.second[0], b = candidate.second[1];
-      if (!is_primary(m, a, b) || deviation(a, b) <= o_.tolerance) continue;  // changed by an earlier split
-      round_made += split_certified(a, b);
+      if (!is_primary(m, a, b) || deviation(cv, a, b) <= o.tolerance)
+        continue;  // changed by an earlier split
+      round_made += split_certified(cv, a, b);
     }
     made += round_made;
     if (round_made == 0) break;
   }
-  s_.tolerance_splits += made;
+  cv.stats.tolerance_splits += made;
   return made;
 }
 

@@ -1,4 +1,4 @@
-// Step 6 of the curve stage (curve/local_operations.cpp, Builder::coarsen): primary edges
+// Step 6 of the curve stage (curve/coarsen.cpp): primary edges
 // collapsed along their curves once the triangles are curved, invariant 3 (α per edge) no longer
 // held there. The same optimized linear mesh is curved with the step and without it.
 #include <gtest/gtest.h>
