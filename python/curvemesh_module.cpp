@@ -264,27 +264,27 @@ void bind_functions(py::module_& m) {
       "Meshes cubic Bezier curves given as a float64 array (n, 4, 2) of control points.");
   m.def(
       "check_file",
-      [](const std::string& path, bool exact) {
+      [](const std::string& path, bool exact, int threads) {
         curvemesh::CheckReport r;
         {
           py::gil_scoped_release release;
-          r = curvemesh::check_file(path, {.exact = exact});
+          r = curvemesh::check_file(path, {.exact = exact, .threads = threads});
         }
         return report_dict(r);
       },
-      py::arg("path"), py::arg("exact") = false,
+      py::arg("path"), py::arg("exact") = false, py::arg("threads") = 0,
       "Checks a Gmsh .msh file (every element in rationals when exact); a dict of the verdict.");
   m.def(
       "check",
-      [](const curvemesh::Mesh& mesh, bool exact) {
+      [](const curvemesh::Mesh& mesh, bool exact, int threads) {
         curvemesh::CheckReport r;
         {
           py::gil_scoped_release release;
-          r = curvemesh::check(mesh, {.exact = exact});
+          r = curvemesh::check(mesh, {.exact = exact, .threads = threads});
         }
         return report_dict(r);
       },
-      py::arg("mesh"), py::arg("exact") = false,
+      py::arg("mesh"), py::arg("exact") = false, py::arg("threads") = 0,
       "Checks a mesh as its .msh file would hold it (every element in rationals when exact); a dict "
       "of the verdict.");
 }

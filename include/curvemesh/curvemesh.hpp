@@ -154,6 +154,8 @@ struct CheckOptions {
   // with a rigorous bound on its rounding errors decides first and rationals only what it cannot:
   // the same verdicts, many times faster.
   bool exact = false;
+  // Threads the check may use (`--threads`; 0: every hardware thread); the verdicts are the same.
+  int threads = 0;
 };
 
 // Checks a Gmsh .msh file (of any 2D triangle mesh of order 1, 2 or 3). Throws Error

@@ -73,6 +73,9 @@ struct CURVEMESH_API Parameters {
   StopAfter stop_after = StopAfter::curve;  // --stop-after: the last stage (optimize when order is 1)
 
   Limits limits;  // not the method's: bounds on what a drawing may cost
+  // Not the method's either: how many threads one run may use (--threads; 0: every hardware
+  // thread). The mesh is the same, byte for byte, whatever the number.
+  int threads = 0;
 
   // Throws Error (Error::Kind::invalid_parameters) naming the first inconsistent parameter by
   // its command-line option, e.g. "--epsilon (0.0005) must be at least --mu (0.001)".

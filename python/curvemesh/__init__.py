@@ -386,19 +386,23 @@ def mesh_curves(control_points, **options):
     return _warned(Mesh(_curvemesh.mesh_curves(np.ascontiguousarray(points), parameters)), "<curves>")
 
 
-def check(path_or_mesh, exact=False):
+def check(path_or_mesh, exact=False, threads=0):
     """The verdict of `curvemesh check` on a Gmsh .msh file (a path: str or os.PathLike) or on a
     Mesh (as its .msh file holds it): a dict with "order", "triangles", "invalid" (elements not
     certified positive: 0 for a valid mesh), "undecided" (of those, the ones the exact test could
     not decide), "min_scaled_jacobian" and "exact_fallbacks" (the elements decided with exact
     rationals: those the certificate in doubles, with its rigorous error bound, left undecided).
     With exact=True (`--exact`) every element is decided with rationals: the same verdicts, slower.
-    Raises ValueError when the file cannot be read."""
+    threads: how many threads the check may use (`--threads`; 0: every hardware thread); the
+    verdicts are the same. Raises ValueError when the file cannot be read, or when threads is not
+    an integer in [0, 4096]."""
+    if isinstance(threads, bool) or not isinstance(threads, int) or not 0 <= threads <= 4096:
+        raise ValueError(f"threads ({threads!r}) must be an integer in [0, 4096]")
     if isinstance(path_or_mesh, Mesh):
-        return _curvemesh.check(path_or_mesh._mesh, bool(exact))
+        return _curvemesh.check(path_or_mesh._mesh, bool(exact), threads)
     if not isinstance(path_or_mesh, (str, os.PathLike)):
         raise TypeError(f"check() takes a path or a Mesh, not {type(path_or_mesh).__name__}")
-    return _curvemesh.check_file(_path(path_or_mesh), bool(exact))
+    return _curvemesh.check_file(_path(path_or_mesh), bool(exact), threads)
 
 
 def _option_list(indent, width=100):

@@ -77,7 +77,7 @@ CheckReport check_file(const std::string& msh_path, const CheckOptions& options)
     } catch (const io::MshError& e) {
       throw Error(Error::Kind::invalid_input, e.what());  // the message starts with the path
     }
-    return report_of(pipeline::check_mesh(m, {.exact = options.exact}));
+    return report_of(pipeline::check_mesh(m, {.exact = options.exact, .threads = options.threads}));
   });
 }
 
@@ -91,7 +91,7 @@ CheckReport check(const Mesh& mesh, const CheckOptions& options) {
     m.nodes.reserve(mesh.node_count());
     for (const auto& [x, y] : mesh.nodes()) m.nodes.emplace_back(x, y);
     m.triangles.assign(mesh.triangles().begin(), mesh.triangles().end());
-    return report_of(pipeline::check_mesh(m, {.exact = options.exact}));
+    return report_of(pipeline::check_mesh(m, {.exact = options.exact, .threads = options.threads}));
   });
 }
 

@@ -181,7 +181,7 @@ void Batch::start_mesh(std::size_t i) {
       "curvemesh", "mesh", "-o", path_argument(d.msh.string()), "--stats", path_argument(d.stats.string()),
       "-q"};
   argv.insert(argv.end(), forwarded_.begin(), forwarded_.end());
-  argv.insert(argv.end(), {"--", path_argument(d.path)});
+  argv.insert(argv.end(), {"--threads", std::to_string(settings_.threads), "--", path_argument(d.path)});
   Job job;
   job.index = i;
   // Taken before the child reads the drawing: one changed while it was meshed is redone next time.
@@ -234,7 +234,9 @@ void Batch::after_mesh(Job job, const Outcome& o) {
   // checker, and the time limit covers both steps.
   job.mesh = o;
   job.checking = true;
-  job.child = start_child({"curvemesh", "check", "--json", "--", path_argument(d.msh.string())}, setup_);
+  job.child = start_child({"curvemesh", "check", "--json", "--threads", std::to_string(settings_.threads), "--",
+                           path_argument(d.msh.string())},
+                          setup_);
   if (job.child.pid < 0) {
     after_check(std::move(job), outcome_of(job.child, 0, 0));
     return;

@@ -42,6 +42,7 @@ struct Settings {
   unsigned jobs = 1;
   double timeout_s = 300, memory_limit_gb = 0;
   bool force = false;
+  int threads = 1;  // --threads of every child, meshing and checking
 };
 
 class Batch {

@@ -55,7 +55,7 @@ struct BatchArgs {
 std::vector<std::string> forwarded_arguments(const MeshForwarding& m) {
   std::vector<std::string> out;
   for (const CLI::Option* o : m.options) {
-    if (o->count() == 0) continue;
+    if (o->count() == 0 || o->get_name() == "--threads") continue;  // child_threads passes it on
     if (o->get_expected_min() == 0) {
       out.push_back(o->get_name());
     } else if (!o->results().empty()) {
@@ -64,6 +64,14 @@ std::vector<std::string> forwarded_arguments(const MeshForwarding& m) {
     }
   }
   return out;
+}
+
+// The threads each child may use: --threads as given, else the hardware threads shared by the
+// jobs (at least one each), so that J children of T threads each do not oversubscribe the machine.
+int child_threads(const BatchArgs& args) {
+  for (const CLI::Option* o : args.mesh.options)
+    if (o->get_name() == "--threads" && o->count() > 0) return args.mesh.parameters.threads;
+  return static_cast<int>(std::max(1u, std::max(1u, std::thread::hardware_concurrency()) / args.jobs));
 }
 
 int run_batch(const BatchArgs& args) {
@@ -94,7 +102,8 @@ int run_batch(const BatchArgs& args) {
                               "curvemesh: " + output_dir.string() + ": cannot create (" + ec.message() + ")");
 
     const batch::BlockedSignals signals;
-    batch::Batch batch_run({args.jobs, args.timeout_s, args.memory_limit_gb, args.force}, std::move(mine),
+    batch::Batch batch_run({args.jobs, args.timeout_s, args.memory_limit_gb, args.force, child_threads(args)},
+                           std::move(mine),
                            forwarded_arguments(args.mesh), signals);
     const int interrupted = batch_run.run(report_path);
 
@@ -144,7 +153,10 @@ Runner add_batch_command(CLI::App& app) {
                   "below that folder, files keep their name; names that would collide get a suffix hashed "
                   "from the drawing's path")
       ->required();
-  cmd->add_option("-j,--jobs", args->jobs, "drawings meshed at the same time (default: the hardware threads)")
+  cmd->add_option("-j,--jobs", args->jobs,
+                  "drawings meshed at the same time (default: the hardware threads); each may use the hardware "
+                  "threads divided by the jobs (at least one) unless --threads says how many, so that the "
+                  "children share the machine without oversubscribing it")
       ->capture_default_str()
       ->check(CLI::Range(1u, 4096u));
   cmd->add_option("--timeout", args->timeout_s,

@@ -24,6 +24,7 @@ namespace {
 struct CheckArgs {
   std::string input, svg;
   bool json = false, exact = false;
+  int threads = 0;
   double max_input_mb = io::kDefaultMaxMshMb;
 };
 
@@ -38,7 +39,7 @@ int run_check(const CheckArgs& args) {
     std::cerr << "curvemesh: " << args.input << ": " << e.what() << "\n";
     return kInvalidInput;
   }
-  const pipeline::MeshCheck c = pipeline::check_mesh(m, {.exact = args.exact});
+  const pipeline::MeshCheck c = pipeline::check_mesh(m, {.exact = args.exact, .threads = args.threads});
   nlohmann::ordered_json report;
   report["file"] = args.input;
   report["order"] = c.order;
@@ -93,6 +94,11 @@ Runner add_check_command(CLI::App& app) {
   cmd->add_flag("--exact", args->exact,
                 "decide every element with exact rationals, without the double certificate first "
                 "(the same verdicts, slower: the independent check of the filtered one)");
+  cmd->add_option("--threads", args->threads,
+                  "threads the check may use (0: every hardware thread); the verdicts are the same whatever the "
+                  "number")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 4096));
   cmd->add_option("--max-input-mb", args->max_input_mb,
                   "refuse a .msh file larger than this many MiB (a cubic mesh of two million triangles "
                   "is about 500)")

@@ -14,7 +14,7 @@ namespace {
 
 double worst_energy(const Curving& cv) {
   double worst = 0;
-  for (int t = 0; t < cv.form.triangle_slots(); ++t) worst = std::max(worst, cv.energy(t));
+  for (const double e : energies(cv)) worst = std::max(worst, e);
   return worst;
 }
 
@@ -24,10 +24,10 @@ void record_statistics(const Curving& cv, CurvedMesh& out) {
   const TriMesh& m = cv.mesh;
   const CurvedForm& form = cv.form;
   Stats& s = cv.stats;
-  std::vector<double> amips(out.triangles.size());
+  const std::vector<double> amips = energies(cv);
   for (std::size_t k = 0; k < out.triangles.size(); ++k) {
     const int t = static_cast<int>(k);
-    const double e = amips[k] = cv.energy(t);
+    const double e = amips[k];
     s.max_amips = std::max(s.max_amips, e);
     s.mean_amips += e / static_cast<double>(out.triangles.size());
     if (form.scaled(t) <= 0) ++s.invalid_triangles;

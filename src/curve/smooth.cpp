@@ -1,6 +1,7 @@
 // Step 4 of curve(), smoothing: corners and centre nodes move where the worst energy around them
 // is lowest (free and secondary corners in the plane, corners on curves along them), each move
 // certified; primary vertices still off their curve are projected onto it.
+#include "base/parallel.hpp"
 #include "curve/steps.hpp"
 #include "geometry/closest_point.hpp"
 
@@ -219,11 +220,19 @@ void smooth(Curving& cv) {
     if (smooth_pass(cv) == 0) return;
 }
 
+std::vector<double> energies(const Curving& cv) {
+  std::vector<double> e(cv.form.triangle_slots(), 0.0);
+  base::for_each_part(e.size(), [&](std::size_t t) {
+    if (cv.mesh.alive(static_cast<int>(t))) e[t] = cv.energy(static_cast<int>(t));
+  });
+  return e;
+}
+
 std::vector<int> bad_triangles(const Curving& cv) {
+  const std::vector<double> energy = energies(cv);
   std::vector<std::pair<double, int>> bad;
   for (int t = 0; t < cv.form.triangle_slots(); ++t)
-    if (cv.mesh.alive(t))
-      if (const double e = cv.energy(t); e > cv.options.stop_amips) bad.push_back({-e, t});
+    if (cv.mesh.alive(t) && energy[t] > cv.options.stop_amips) bad.push_back({-energy[t], t});
   std::sort(bad.begin(), bad.end());
   std::vector<int> out;
   for (const auto& [e, t] : bad) out.push_back(t);

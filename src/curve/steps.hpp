@@ -72,6 +72,8 @@ bool certify_all(Curving& cv, const std::vector<int>& triangles);
 
 // ----- smooth.cpp: step 4, smoothing ----------------------------------------------------------
 void smooth(Curving& cv);
+// The energy of every alive triangle slot (0 for a dead one), computed in parallel.
+std::vector<double> energies(const Curving& cv);
 std::vector<int> bad_triangles(const Curving& cv);  // above the stop energy, worst first
 int smooth_pass(Curving& cv);
 int move_corner(Curving& cv, int v);

@@ -23,6 +23,8 @@ struct CheckOptions {
   // Decide every element with rationals, without the double certificate first: the independent
   // check of the filtered one, whose verdicts are the same.
   bool exact = false;
+  // Threads the check may use (0: every hardware thread); the verdicts are the same.
+  int threads = 0;
 };
 
 // Each element's det J decided as certify_jacobian_exact decides it on the rationals of its

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "base/limits.hpp"
+#include "base/parallel.hpp"
 #include "features/poly_input.hpp"
 #include "io/curved_mesh.hpp"
 #include "pipeline/domain.hpp"
@@ -484,18 +485,27 @@ Result run_stages(const Source& source, const Parameters& parameters, const RunO
 
 }  // namespace
 
+namespace {
+
+Result run_and_group(const Source& source, const Parameters& parameters, const RunOptions& options) {
+  Result r = run_stages(source, parameters, options);
+  if (r.last >= Stage::triangulate) {
+    // The mesh every writer and the API give out, with the groups a solver selects by
+    // (regions/groups.hpp), listed as the .msh holds them.
+    const auto t = Clock::now();
+    r.output = std::make_shared<const io::HighOrderMesh>(make_output_mesh(r));
+    r.stats["groups"] = groups_json(*r.output);
+    r.stats["seconds"]["groups"] = seconds_since(t);
+  }
+  return r;
+}
+
+}  // namespace
+
+// The whole run on the threads Parameters::threads allows (base/parallel.hpp).
 Result run(const Source& source, const Parameters& parameters, const RunOptions& options) {
   try {
-    Result r = run_stages(source, parameters, options);
-    if (r.last >= Stage::triangulate) {
-      // The mesh every writer and the API give out, with the groups a solver selects by
-      // (regions/groups.hpp), listed as the .msh holds them.
-      const auto t = Clock::now();
-      r.output = std::make_shared<const io::HighOrderMesh>(make_output_mesh(r));
-      r.stats["groups"] = groups_json(*r.output);
-      r.stats["seconds"]["groups"] = seconds_since(t);
-    }
-    return r;
+    return base::with_threads(parameters.threads, [&] { return run_and_group(source, parameters, options); });
   } catch (const base::LimitExceeded& e) {
     throw invalid(source.name + ": " + e.what());
   }

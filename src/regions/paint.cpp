@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <map>
 #include <stdexcept>
 #include <utility>
 
+#include "base/parallel.hpp"
 #include "geometry/p2_triangle.hpp"
 #include "geometry/p3_triangle.hpp"
 #include "regions/groups.hpp"
@@ -20,7 +22,8 @@ namespace {
 // so that a face an outline crosses (where the mesh follows it only within ε) has points on
 // both sides, and one lying exactly on an outline (drawings on an integer grid) has others.
 void add_samples(const io::HighOrderMesh& mesh, int t, std::vector<geometry::Vec2>& out) {
-  static constexpr double kReference[4][2] = {{1.0 / 3, 1.0 / 3}, {1.0 / 6, 1.0 / 6}, {2.0 / 3, 1.0 / 6}, {1.0 / 6, 2.0 / 3}};
+  static constexpr double kReference[4][2] = {
+      {1.0 / 3, 1.0 / 3}, {1.0 / 6, 1.0 / 6}, {2.0 / 3, 1.0 / 6}, {1.0 / 6, 2.0 / 3}};
   const auto tri = mesh.triangle(t);
   if (mesh.order == 3) {
     geometry::P3Nodes nodes;
@@ -40,7 +43,8 @@ void add_samples(const io::HighOrderMesh& mesh, int t, std::vector<geometry::Vec
 
 double corner_area(const io::HighOrderMesh& mesh, int t) {
   const auto tri = mesh.triangle(t);
-  return geometry::cross(mesh.nodes[tri[1]] - mesh.nodes[tri[0]], mesh.nodes[tri[2]] - mesh.nodes[tri[0]]) / 2;
+  return geometry::cross(mesh.nodes[tri[1]] - mesh.nodes[tri[0]], mesh.nodes[tri[2]] - mesh.nodes[tri[0]]) /
+         2;
 }
 
 // Triangles sampled per face: its largest first.
@@ -66,8 +70,8 @@ double squared_gap(const geometry::Box2& a, const geometry::Box2& b) {
 // envelope, a sample farther than ε from the outline can still lie on the side the face is not
 // (a triangle reaching into a thin shape drawn over the face). So the face is decided at its
 // sample farthest from the outline, each sample's distance bounded within a fifth of it.
-bool covers(const Outline& outline, const svg::FillLayer& layer, const FaceSamples& s, const ClassifyOptions& o,
-            int l, int f) {
+bool covers(const Outline& outline, const svg::FillLayer& layer, const FaceSamples& s,
+            const ClassifyOptions& o, int l, int f) {
   // Every sample outside the layer's box: wound around by none of its loops.
   if (s.points.empty() || squared_gap(s.box, layer.bounds) > 0) return false;
   // A sample farther from the outline than from every other sample says for all of them: no
@@ -117,29 +121,45 @@ bool too_narrow(const svg::FillLayer& layer, const ClassifyOptions& options) {
   return layer.stroke && layer.width < options.min_stroke_width;
 }
 
+namespace {
+
+// Each face's samples: its largest triangles' (ties by index: deterministic), face by face in
+// parallel.
+std::vector<FaceSamples> face_samples(const io::HighOrderMesh& mesh, const Faces& faces) {
+  const int face_count = faces.count();
+  std::vector<std::vector<int>> members(face_count);
+  for (int t = 0; t < mesh.triangle_count(); ++t) members[faces.of_triangle[t]].push_back(t);
+  std::vector<double> area(mesh.triangle_count());
+  base::for_each_part(area.size(), [&](std::size_t t) { area[t] = corner_area(mesh, static_cast<int>(t)); });
+  std::vector<FaceSamples> samples(face_count);
+  base::for_each_part(
+      face_count,
+      [&](std::size_t f) {
+        std::vector<int>& m = members[f];
+        const auto count = std::min<std::size_t>(kSamples, m.size());
+        std::partial_sort(m.begin(), m.begin() + count, m.end(),
+                          [&](int a, int b) { return area[a] != area[b] ? area[a] > area[b] : a < b; });
+        FaceSamples& s = samples[f];
+        for (std::size_t i = 0; i < count; ++i) add_samples(mesh, m[i], s.points);
+        for (const geometry::Vec2& p : s.points) {
+          s.box.add(p);
+          s.spread = std::max(s.spread, (p - s.points[0]).norm());
+        }
+      },
+      1);
+  return samples;
+}
+
+}  // namespace
+
+// Every face decided on its own, in parallel; a face that cannot be decided is reported as a
+// serial sweep would report it, the first in the faces' order.
 Classification classify(const io::HighOrderMesh& mesh, const std::vector<svg::FillLayer>& fills,
                         const ClassifyOptions& options, const std::vector<svg::ClipPath>& clips) {
   Classification c;
   c.faces = find_faces(mesh);
   const int face_count = c.faces.count();
-  // Each face's sample triangles, largest first (ties by index: deterministic).
-  std::vector<std::vector<int>> members(face_count);
-  for (int t = 0; t < mesh.triangle_count(); ++t) members[c.faces.of_triangle[t]].push_back(t);
-  std::vector<double> area(mesh.triangle_count());
-  for (int t = 0; t < mesh.triangle_count(); ++t) area[t] = corner_area(mesh, t);
-  std::vector<FaceSamples> samples(face_count);
-  for (int f = 0; f < face_count; ++f) {
-    std::vector<int>& m = members[f];
-    const auto count = std::min<std::size_t>(kSamples, m.size());
-    std::partial_sort(m.begin(), m.begin() + count, m.end(),
-                      [&](int a, int b) { return area[a] != area[b] ? area[a] > area[b] : a < b; });
-    FaceSamples& s = samples[f];
-    for (std::size_t i = 0; i < count; ++i) add_samples(mesh, m[i], s.points);
-    for (const geometry::Vec2& p : s.points) {
-      s.box.add(p);
-      s.spread = std::max(s.spread, (p - s.points[0]).norm());
-    }
-  }
+  const std::vector<FaceSamples> samples = face_samples(mesh, c.faces);
   std::vector<Outline> outlines;
   outlines.reserve(fills.size());
   for (const svg::FillLayer& layer : fills) outlines.emplace_back(layer);
@@ -154,9 +174,9 @@ Classification classify(const io::HighOrderMesh& mesh, const std::vector<svg::Fi
   };
   c.visible.assign(face_count, -1);
   c.filled.assign(face_count, -1);
-  for (int f = 0; f < face_count; ++f) {
-    // The topmost covering layer: walk down the paint order, stop at the first that covers (and
-    // under a stroke, go on to the first fill that does).
+  // The topmost covering layer: walk down the paint order, stop at the first that covers (and
+  // under a stroke, go on to the first fill that does).
+  const auto decide = [&](int f) {
     for (int l = static_cast<int>(fills.size()) - 1; l >= 0; --l) {
       if ((c.visible[f] >= 0 && fills[l].stroke) || too_narrow(fills[l], options)) continue;
       const auto& layer_clips = fills[l].clips;
@@ -169,7 +189,20 @@ Classification classify(const io::HighOrderMesh& mesh, const std::vector<svg::Fi
         }
       }
     }
-  }
+  };
+  std::vector<std::exception_ptr> failed(face_count);
+  base::for_each_part(
+      face_count,
+      [&](std::size_t f) {
+        try {
+          decide(static_cast<int>(f));
+        } catch (...) {
+          failed[f] = std::current_exception();
+        }
+      },
+      1);
+  for (const std::exception_ptr& e : failed)
+    if (e) std::rethrow_exception(e);
   return c;
 }
 
@@ -218,8 +251,8 @@ io::HighOrderMesh tag_by_region(const io::HighOrderMesh& whole, const std::vecto
 
 }  // namespace
 
-Painted paint(const io::HighOrderMesh& whole, const Classification& c, const svg::FeatureSoup& soup, Domain domain,
-              bool tag_regions) {
+Painted paint(const io::HighOrderMesh& whole, const Classification& c, const svg::FeatureSoup& soup,
+              Domain domain, bool tag_regions) {
   Painted out;
   const std::vector<char> keep = domain_triangles(c, domain);
   const bool classified = !c.visible.empty();
@@ -227,7 +260,8 @@ Painted paint(const io::HighOrderMesh& whole, const Classification& c, const svg
   if (classified)
     for (int t = 0; t < whole.triangle_count(); ++t) triangle_layer[t] = c.visible[c.faces.of_triangle[t]];
 
-  const io::HighOrderMesh tagged = tag_regions ? tag_by_region(whole, triangle_layer, keep, soup, out.regions) : whole;
+  const io::HighOrderMesh tagged =
+      tag_regions ? tag_by_region(whole, triangle_layer, keep, soup, out.regions) : whole;
   out.mesh = submesh(tagged, keep, nullptr, &out.node_origin);
   for (int t = 0; t < whole.triangle_count(); ++t) {
     if (!keep[t]) continue;

@@ -240,7 +240,8 @@ def test_check(order, examples, run_cli, tmp_path):
     m.write(tmp_path / "m.msh")
     cli = json.loads(run_cli("check", tmp_path / "m.msh", "--json").stdout)
     path = tmp_path / "m.msh"
-    for report in [curvemesh.check(m), curvemesh.check(path), curvemesh.check(str(path))]:
+    for report in [curvemesh.check(m), curvemesh.check(path), curvemesh.check(str(path)), curvemesh.check(m, threads=1),
+                   curvemesh.check(path, threads=3)]:
         assert set(report) == {"order", "triangles", "invalid", "undecided", "min_scaled_jacobian", "exact_fallbacks"}
         assert report["order"] == order and report["invalid"] == 0 and report["undecided"] == 0
         assert report["triangles"] == len(m.triangles)
@@ -258,6 +259,9 @@ def test_check(order, examples, run_cli, tmp_path):
         curvemesh.check(tmp_path / "missing.msh")
     with pytest.raises(TypeError):
         curvemesh.check(42)
+    for threads in (-1, 4097, 1.5, True):
+        with pytest.raises(ValueError, match="threads"):
+            curvemesh.check(m, threads=threads)
 
 
 def test_version(run_cli):
@@ -271,7 +275,7 @@ def test_options_and_defaults():
         "mu", "epsilon", "eps_m", "edge_length", "min_edge_length", "min_angle", "junction_angle", "order", "linear",
         "curve_tolerance", "max_iterations", "stop_amips", "box_margin", "curved_stop_amips", "max_curved_passes",
         "features", "max_input_mb", "max_elements", "max_curves", "max_triangles", "regions", "domain", "stop_after",
-        "strokes", "min_stroke_width",
+        "strokes", "min_stroke_width", "threads",
     }
     assert curvemesh.OPTIONS["regions"] is False and curvemesh.OPTIONS["domain"] == "box"
     assert curvemesh.OPTIONS["strokes"] == "lines"
@@ -279,6 +283,7 @@ def test_options_and_defaults():
     assert curvemesh.OPTIONS["edge_length"] == 0.05 and curvemesh.OPTIONS["linear"] is False
     assert curvemesh.OPTIONS["order"] == 3 and curvemesh.OPTIONS["curve_tolerance"] == 0.0
     assert curvemesh.OPTIONS["max_curves"] == 500000 and curvemesh.OPTIONS["max_triangles"] == 2000000
+    assert curvemesh.OPTIONS["threads"] == 0
 
 
 def test_a_limit_reached_raises_the_command_lines_message(run_cli, tmp_path, examples):
@@ -405,6 +410,7 @@ def test_missing_file_raises_the_command_lines_message(run_cli, tmp_path):
         (dict(mu=0), "--mu (0) must be a positive number"),
         (dict(mu=float("nan")), "--mu (nan) must be a positive number"),
         (dict(min_stroke_width=0), "--min-stroke-width (0) must be a positive number"),
+        (dict(threads=-1), "--threads (-1) must be an integer in [0, 4096]"),
         (dict(min_angle=90), "--min-angle (90) must be in [0.1, 60]"),
         (dict(max_iterations=-1), "--max-iterations (-1) must be a non-negative integer"),
         (dict(max_curved_passes=2**40), "--max-curved-passes (1099511627776) is out of range"),
