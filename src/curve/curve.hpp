@@ -111,6 +111,7 @@ struct Stats {
   int coarsening_collapses = 0;                                    // collapses step 6 kept
   int late_projections = 0;               // primary vertices brought onto their curve only now
   int projections_elsewhere = 0;          // of those, placed on the curve away from their closest point
+  int cleared_projections = 0;            // of those, placed once neighbours in the way had moved
   // Late projections and step 5's placements on the curve kept after a repair by step 4's
   // operations, and those taken back because the triangles around them stayed worse.
   int repaired_moves = 0;

@@ -155,6 +155,48 @@ std::optional<double> best_place_on_curve(Curving& cv, int v, const CurveNeighbo
   return place;
 }
 
+// How far from turned over v's star is with v at p and w at q: the smallest signed area of its
+// triangles over their squared longest side (negative: turned over).
+double star_margin(const TriMesh& m, int v, const Vec2& p, int w, const Vec2& q) {
+  const auto at = [&](int u) { return u == v ? p : u == w ? q : m.point(u); };
+  double margin = std::numeric_limits<double>::infinity();
+  for (int t : m.triangles_of(v)) {
+    const mesh::Triangle& tri = m.triangle(t);
+    const Vec2 a = at(tri[0]), b = at(tri[1]), c = at(tri[2]);
+    const double area = geometry::cross(b - a, c - a);
+    const double side = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+    margin = std::min(margin, side > 0 ? area / side : -1.0);
+  }
+  return margin;
+}
+
+// Where no place on v's curve keeps v's star counter-clockwise (a neighbour lies between v and the
+// curve), the free and secondary neighbours that are not on v's curve move out of the way of p,
+// v's place on the curve: each, by compass search from where it is, to where v's star with v at p
+// is farthest from turned over (star_margin), as its own star and the ε-envelope allow; its nodes
+// follow and its triangles are certified again. Returns whether v's star is then valid at p.
+bool clear_the_way(Curving& cv, int v, const CurveNeighbours& n, const Vec2& p) {
+  TriMesh& m = cv.mesh;
+  for (int w : m.neighbours(v)) {
+    const mesh::VertexKind kind = m.tag(w).kind;
+    if (w == n.x || w == n.y || cv.form.on_fitted_edge(w) ||
+        (kind != mesh::VertexKind::free && kind != mesh::VertexKind::secondary))
+      continue;
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int u : m.neighbours(w)) shortest = std::min(shortest, (m.point(u) - m.point(w)).norm());
+    const Vec2 x = compass_search(m.point(w), 0.25 * shortest, [&](const Vec2& q, double) {
+      if (!mesh::star_valid_at(m, w, q) || !mesh::secondary_edges_inside(m, cv.constraints, w, q))
+        return std::numeric_limits<double>::infinity();
+      return -star_margin(m, v, p, w, q);
+    });
+    if (x == m.point(w)) continue;
+    cv.form.place_corner(w, x);
+    m.set_position(w, x);
+    for (int t : m.triangles_of(w)) cv.form.set_scaled(t, cv.certify(t).value_or(-1.0));
+  }
+  return mesh::star_valid_at(m, v, p);
+}
+
 // Moves primary vertex v, still off its curve, onto the curve between its two curve neighbours:
 // to its closest point there, or, where that would turn one of its triangles over (a neighbour
 // lies between v and the curve) or is not kept, to the place on the curve where its curved
@@ -201,9 +243,25 @@ int project(Curving& cv, int v) {
     return 1;
   // The move and its repair are undone: v and its star are as they were.
   const std::optional<double> alternative = best_place_on_curve(cv, v, n, lo, hi);
-  if (!alternative || *alternative == closest || !keep_unless_worse(cv, {v}, move_to(*alternative), undo))
-    return 0;
-  ++cv.stats.projections_elsewhere;
+  if (alternative) {
+    if (*alternative == closest || !keep_unless_worse(cv, {v}, move_to(*alternative), undo)) return 0;
+    ++cv.stats.projections_elsewhere;
+    return 1;
+  }
+  // Nowhere on the curve: the neighbours in the way move first, then v goes to its closest point,
+  // the two as one move (one journal level) that the guard keeps or takes back.
+  const auto clear_and_move = [&] {
+    m.open_journal();
+    if (!clear_the_way(cv, v, n, curve.eval(closest))) {
+      m.rollback();
+      return false;
+    }
+    move_to(closest)();
+    m.commit();  // the placement's level into this one
+    return true;
+  };
+  if (!keep_unless_worse(cv, {v}, clear_and_move, undo)) return 0;
+  ++cv.stats.cleared_projections;
   return 1;
 }
 

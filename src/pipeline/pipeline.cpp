@@ -72,6 +72,7 @@ Json curve_json(const curve::Stats& s, const curve::Options& o, double d) {
           {"curved_swaps", s.curved_swaps},
           {"late_projections", s.late_projections},
           {"projections_elsewhere", s.projections_elsewhere},
+          {"cleared_projections", s.cleared_projections},
           {"repaired_moves", s.repaired_moves},
           {"refused_moves", s.refused_moves},
           {"max_amips", s.max_amips},

@@ -188,6 +188,31 @@ check("a stroke below --min-stroke-width: exit 1, naming the option rather than 
 check("... and the warning says it is narrower and paints nothing",
       "1 stroke is narrower than --min-stroke-width" in r8.stderr and "paint nothing" in r8.stderr, r8.stderr)
 
+# Stroke sides within a hair of another curve: a vertex the optimization left off its curve had, in
+# these drawings, a neighbour between it and every place on the curve. The neighbour moves out of
+# the way first (cleared_projections), so every primary edge follows its curve, and the mesh is
+# certified by the checker.
+openclipart = "/usr/share/openclipart/svg"
+for drawing in ("recreation/holiday/shamrock_for_march_natha_01.svg", "food/beverages/teacup_ganson.svg",
+                "recreation/party/cone1_ganson.svg"):
+    path = os.path.join(openclipart, drawing)
+    check(f"{drawing} is installed (Debian's openclipart-svg)", os.path.exists(path))
+    if not os.path.exists(path):
+        continue
+    out = os.path.join(tmp.name, os.path.basename(drawing))
+    r9 = run("mesh", path, "-o", out + ".msh", "--stats", out + ".json", "--domain", "painted", "-q")
+    check(f"{drawing}: meshed with --domain painted", r9.returncode == 0, r9.stderr[-500:])
+    if r9.returncode != 0:
+        continue
+    with open(out + ".json") as f:
+        curve = json.load(f)["curve"]
+    check(f"{drawing}: a neighbour in the way moved, and the vertex reached its curve",
+          curve.get("cleared_projections", 0) >= 1, curve)
+    check(f"{drawing}: every primary edge follows its curve", curve["straight_primary_edges"] == 0, curve)
+    c9 = run("check", out + ".msh", "--json")
+    check(f"{drawing}: certified by curvemesh check", c9.returncode == 0 and json.loads(c9.stdout)["invalid"] == 0,
+          c9.stdout + c9.stderr)
+
 r5 = run("mesh", icon, "-o", os.path.join(tmp.name, "bad.msh"), "--strokes", "wide")
 check("--strokes refuses another value", r5.returncode == 2, r5.stderr)
 
