@@ -105,14 +105,19 @@ void expect_the_element_rule(const Fixture& f, const CurvedForm& form, int step)
   }
 }
 
-TEST(CurvedForm, EveryOperationLeavesTheElementOfAppendixC) {
-  Fixture f = make_grid(9, 5);
-  CurvedForm form(f.mesh, f.constraints, 3);
+// Every triangle of the fixture given its nodes, centres chosen where an edge follows a curve.
+void give_every_triangle_its_nodes(const Fixture& f, CurvedForm& form) {
   for (int t = 0; t < f.mesh.triangle_slots(); ++t) {
     const Triangle& tri = f.mesh.triangle(t);
     form.push_triangle(tri, (f.mesh.point(tri[0]) + f.mesh.point(tri[1]) + f.mesh.point(tri[2])) / 3, 1.0);
     if (form.curved_edge_of(tri) >= 0) form.choose_centre(t);
   }
+}
+
+TEST(CurvedForm, EveryOperationLeavesTheElementOfAppendixC) {
+  Fixture f = make_grid(9, 5);
+  CurvedForm form(f.mesh, f.constraints, 3);
+  give_every_triangle_its_nodes(f, form);
   expect_the_element_rule(f, form, -1);
   std::mt19937 rng(11);
   int kept = 0, refused = 0;
@@ -139,10 +144,7 @@ TEST(CurvedForm, EveryOperationLeavesTheElementOfAppendixC) {
 TEST(CurvedForm, NestedLevelsTakeBackTheNodesWithTheMesh) {
   Fixture f = make_grid(8, 3);
   CurvedForm form(f.mesh, f.constraints, 3);
-  for (int t = 0; t < f.mesh.triangle_slots(); ++t) {
-    const Triangle& tri = f.mesh.triangle(t);
-    form.push_triangle(tri, (f.mesh.point(tri[0]) + f.mesh.point(tri[1]) + f.mesh.point(tri[2])) / 3, 1.0);
-  }
+  give_every_triangle_its_nodes(f, form);
   std::mt19937 rng(29);
   std::vector<FormState> open;
   int rolled_back = 0, deepest = 0;
