@@ -87,7 +87,7 @@ ConvergenceResult poisson_convergence(const ConvergenceOptions& options) {
     const MeshedDrawing meshed = pipeline::mesh_drawing(pipeline::Source::svg(disk_svg(), "<disk>"), parameters);
     result.mesh_seconds += meshed.seconds;
     const std::vector<char> keep =
-        regions::domain_triangles({regions::find_faces(meshed.mesh), {}}, regions::Domain::evenodd);
+        regions::domain_triangles({regions::find_faces(meshed.mesh), {}, {}}, regions::Domain::evenodd);
     const io::HighOrderMesh curved = submesh(meshed.mesh, keep);
     const io::HighOrderMesh straight = straight_mesh(curved);
     for (auto [mesh, series] : {std::pair{&curved, &result.p3_geometry}, std::pair{&straight, &result.p1_geometry}}) {
