@@ -393,11 +393,10 @@ def check(path_or_mesh, exact=False, threads=0):
     not decide), "min_scaled_jacobian" and "exact_fallbacks" (the elements decided with exact
     rationals: those the certificate in doubles, with its rigorous error bound, left undecided).
     With exact=True (`--exact`) every element is decided with rationals: the same verdicts, slower.
-    threads: how many threads the check may use (`--threads`; 0: every hardware thread); the
-    verdicts are the same. Raises ValueError when the file cannot be read, or when threads is not
-    an integer in [0, 4096]."""
-    if isinstance(threads, bool) or not isinstance(threads, int) or not 0 <= threads <= 4096:
-        raise ValueError(f"threads ({threads!r}) must be an integer in [0, 4096]")
+    threads: how many threads the check may use (the option `threads` of mesh(); 0: every hardware
+    thread); the verdicts are the same. Raises ValueError when the file cannot be read or threads
+    is out of range, TypeError when threads is not an integer, as mesh() does."""
+    threads = int(_curvemesh.get_parameter(_parameters("check", {"threads": threads}), "threads"))
     if isinstance(path_or_mesh, Mesh):
         return _curvemesh.check(path_or_mesh._mesh, bool(exact), threads)
     if not isinstance(path_or_mesh, (str, os.PathLike)):

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
+#include "app/mesh_options.hpp"
 #include "io/high_order_mesh.hpp"
 #include "io/msh_reader.hpp"
 #include "pipeline/check.hpp"
@@ -24,7 +25,7 @@ namespace {
 struct CheckArgs {
   std::string input, svg;
   bool json = false, exact = false;
-  int threads = 0;
+  pipeline::Parameters parameters;  // --threads alone
   double max_input_mb = io::kDefaultMaxMshMb;
 };
 
@@ -39,7 +40,8 @@ int run_check(const CheckArgs& args) {
     std::cerr << "curvemesh: " << args.input << ": " << e.what() << "\n";
     return kInvalidInput;
   }
-  const pipeline::MeshCheck c = pipeline::check_mesh(m, {.exact = args.exact, .threads = args.threads});
+  const pipeline::MeshCheck c =
+      pipeline::check_mesh(m, {.exact = args.exact, .threads = args.parameters.threads});
   nlohmann::ordered_json report;
   report["file"] = args.input;
   report["order"] = c.order;
@@ -94,11 +96,7 @@ Runner add_check_command(CLI::App& app) {
   cmd->add_flag("--exact", args->exact,
                 "decide every element with exact rationals, without the double certificate first "
                 "(the same verdicts, slower: the independent check of the filtered one)");
-  cmd->add_option("--threads", args->threads,
-                  "threads the check may use (0: every hardware thread); the verdicts are the same whatever the "
-                  "number")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 4096));
+  add_threads_option(*cmd, args->parameters);
   cmd->add_option("--max-input-mb", args->max_input_mb,
                   "refuse a .msh file larger than this many MiB (a cubic mesh of two million triangles "
                   "is about 500)")

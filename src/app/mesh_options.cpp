@@ -36,7 +36,8 @@ CLI::Validator range_of(const ParameterOption& o) {
 CLI::Option* add_parameter(CLI::App& cmd, const ParameterOption& o, Parameters& p) {
   switch (o.kind) {
     case ParameterOption::Kind::flag:
-      return cmd.add_flag_callback(o.names, [&p, set = o.set, v = o.flag_value] { set(p, v); }, o.help);
+      return cmd.add_flag_callback(
+          o.names, [&p, set = o.set, v = o.flag_value] { set(p, v); }, o.help);
     case ParameterOption::Kind::choice: {
       std::vector<std::string> names(o.choices.begin(), o.choices.end());
       return cmd
@@ -50,13 +51,17 @@ CLI::Option* add_parameter(CLI::App& cmd, const ParameterOption& o, Parameters& 
           ->check(CLI::IsMember(names));
     }
     case ParameterOption::Kind::integer:
-      return cmd.add_option_function<long long>(o.names, [&p, set = o.set](long long v) { set(p, double(v)); }, o.help)
+      return cmd
+          .add_option_function<long long>(
+              o.names, [&p, set = o.set](long long v) { set(p, double(v)); }, o.help)
           ->default_str(default_text(o))
           ->check(range_of(o));
     case ParameterOption::Kind::number:
       break;
   }
-  return cmd.add_option_function<double>(o.names, [&p, set = o.set](double v) { set(p, v); }, o.help)
+  return cmd
+      .add_option_function<double>(
+          o.names, [&p, set = o.set](double v) { set(p, v); }, o.help)
       ->default_str(default_text(o))
       ->check(range_of(o));
 }
@@ -73,16 +78,18 @@ std::vector<const CLI::Option*> add_where(CLI::App& cmd, Parameters& p, const ch
 }
 
 // The options of these groups.
-std::vector<const CLI::Option*> add_groups(CLI::App& cmd, Parameters& p, std::initializer_list<std::string_view> groups) {
+std::vector<const CLI::Option*> add_groups(CLI::App& cmd, Parameters& p,
+                                           std::initializer_list<std::string_view> groups) {
   return add_where(cmd, p, &ParameterOption::group, groups);
 }
 
 }  // namespace
 
 void add_memory_limit_option(CLI::App& cmd, double& gigabytes) {
-  cmd.add_option("--memory-limit", gigabytes,
-                 "address space of the run in GB (2^30 bytes; setrlimit RLIMIT_AS): reaching it ends the run with "
-                 "exit 1, out of memory, and nothing written (default: no limit)")
+  cmd.add_option(
+         "--memory-limit", gigabytes,
+         "address space of the run in GB (2^30 bytes; setrlimit RLIMIT_AS): reaching it ends the run with "
+         "exit 1, out of memory, and nothing written (default: no limit)")
       ->check(CLI::Range(0.1, 1e6));
 }
 
@@ -98,20 +105,24 @@ void add_feature_options(CLI::App& cmd, pipeline::Parameters& p) {
   add_groups(cmd, p, {"features", "limits"});
 }
 
-std::vector<const CLI::Option*> add_mesh_options(CLI::App& cmd, pipeline::Parameters& p, io::MshOptions& msh) {
+std::vector<const CLI::Option*> add_mesh_options(CLI::App& cmd, pipeline::Parameters& p,
+                                                 io::MshOptions& msh) {
   std::vector<const CLI::Option*> added = add_groups(cmd, p, {"mesh"});
-  added.push_back(cmd.add_option("--msh-version", msh.version,
-                                 "Gmsh file format: 41 (4.1) or 22 (2.2); a line in several physical groups is one "
-                                 "element of an entity with several physical tags in 4.1, one element per group in 2.2")
-                      ->capture_default_str()
-                      ->transform(CLI::CheckedTransformer(
-                          std::map<std::string, int>{{"4.1", 41}, {"41", 41}, {"2.2", 22}, {"22", 22}})));
-  added.push_back(cmd.add_flag(
-      "--msh-boundary-only", msh.boundary_only,
-      "the .msh gets only the lines on the border of the meshed domain, each in one physical group: the drawn "
-      "element it lies on (the first drawn, when several), else boundary (a side of the box). For deal.II, whose "
-      "GridIn::read_msh refuses a line inside the mesh or in two groups; with --order 1, as it reads straight "
-      "triangles only"));
+  added.push_back(
+      cmd.add_option("--msh-version", msh.version,
+                     "Gmsh file format: 41 (4.1) or 22 (2.2); a line in several physical groups is one "
+                     "element of an entity with several physical tags in 4.1, one element per group in 2.2")
+          ->capture_default_str()
+          ->transform(CLI::CheckedTransformer(
+              std::map<std::string, int>{{"4.1", 41}, {"41", 41}, {"2.2", 22}, {"22", 22}})));
+  added.push_back(cmd.add_flag("--msh-boundary-only", msh.boundary_only,
+                               "the .msh gets only the lines on the border of the meshed domain, each in one "
+                               "physical group: the drawn "
+                               "element it lies on (the first drawn, when several), else boundary (a side of "
+                               "the box). For deal.II, whose "
+                               "GridIn::read_msh refuses a line inside the mesh or in two groups; with "
+                               "--order 1, as it reads straight "
+                               "triangles only"));
   for (const CLI::Option* o : add_groups(cmd, p, {"features", "limits"})) added.push_back(o);
   return added;
 }
@@ -122,6 +133,10 @@ void add_run_options(CLI::App& cmd, pipeline::Parameters& p) {
 
 std::vector<const CLI::Option*> add_batch_run_options(CLI::App& cmd, pipeline::Parameters& p) {
   return add_where(cmd, p, &ParameterOption::option, {"--regions", "--domain"});
+}
+
+void add_threads_option(CLI::App& cmd, pipeline::Parameters& p) {
+  add_where(cmd, p, &ParameterOption::option, {"--threads"});
 }
 
 bool parameters_valid(const pipeline::Parameters& p) {

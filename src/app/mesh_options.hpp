@@ -19,7 +19,7 @@ namespace curvemesh::app {
 
 // The groups "features" and "limits": --mu, --epsilon, -l/--edge-length, --min-edge-length,
 // --min-angle, --junction-angle, --no-features, --eps-m; --max-input-mb, --max-elements,
-// --max-curves, --max-triangles.
+// --max-curves, --max-triangles, --threads.
 void add_feature_options(CLI::App& cmd, pipeline::Parameters& parameters);
 
 // The group "run": --regions, --domain, --stop-after (`mesh` alone).
@@ -28,6 +28,8 @@ void add_run_options(CLI::App& cmd, pipeline::Parameters& parameters);
 // --regions and --domain, what `batch` passes on of the group "run" (not --stop-after: a batch
 // certifies finished meshes). Returns the options it registered.
 std::vector<const CLI::Option*> add_batch_run_options(CLI::App& cmd, pipeline::Parameters& parameters);
+// --threads alone (for `check`, which takes no other parameter).
+void add_threads_option(CLI::App& cmd, pipeline::Parameters& parameters);
 
 // --memory-limit GB: the process's address space (setrlimit RLIMIT_AS), as batch sets its
 // children's; 0 (the default) leaves it as it is.

@@ -182,13 +182,8 @@ bool clear_the_way(Curving& cv, int v, const CurveNeighbours& n, const Vec2& p) 
     if (w == n.x || w == n.y || cv.form.on_fitted_edge(w) ||
         (kind != mesh::VertexKind::free && kind != mesh::VertexKind::secondary))
       continue;
-    double shortest = std::numeric_limits<double>::infinity();
-    for (int u : m.neighbours(w)) shortest = std::min(shortest, (m.point(u) - m.point(w)).norm());
-    const Vec2 x = compass_search(m.point(w), 0.25 * shortest, [&](const Vec2& q, double) {
-      if (!mesh::star_valid_at(m, w, q) || !mesh::secondary_edges_inside(m, cv.constraints, w, q))
-        return std::numeric_limits<double>::infinity();
-      return -star_margin(m, v, p, w, q);
-    });
+    const Vec2 x = search_in_plane(cv, w, m.point(w),
+                                   [&](const Vec2& q, double) { return -star_margin(m, v, p, w, q); });
     if (x == m.point(w)) continue;
     cv.form.place_corner(w, x);
     m.set_position(w, x);

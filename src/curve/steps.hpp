@@ -120,18 +120,28 @@ Vec2 compass_search(const Vec2& x0, double h, const Objective& objective) {
   return x;
 }
 
-// Where free corner v should go: compass search, from where it is and a first step of a quarter
-// of its shortest edge, on the worst `measure` around it (its nodes placed by place_corner);
-// positions that would turn a corner triangle over are out. Leaves every node as it was.
-template <class Measure>
-Vec2 search_corner(Curving& cv, int v, const Measure& measure) {
+// Compass search for a free or secondary corner v, from `start` (where it is) with a first step
+// of a quarter of its shortest edge; positions that would turn a triangle of its star over or
+// take one of its secondary edges out of the ε-envelope are out. objective(p, bound) as
+// compass_search's.
+template <class Objective>
+Vec2 search_in_plane(const Curving& cv, int v, const Vec2& start, const Objective& objective) {
   const TriMesh& m = cv.mesh;
   double shortest = std::numeric_limits<double>::infinity();
   for (int w : m.neighbours(v)) shortest = std::min(shortest, (m.point(w) - m.point(v)).norm());
-  const CurvedForm::Snapshot saved = cv.form.snapshot(m.triangles_of(v));
-  return compass_search(cv.form.at(v), 0.25 * shortest, [&](const Vec2& p, double bound) {
+  return compass_search(start, 0.25 * shortest, [&](const Vec2& p, double bound) {
     if (!mesh::star_valid_at(m, v, p) || !mesh::secondary_edges_inside(m, cv.constraints, v, p))
       return std::numeric_limits<double>::infinity();
+    return objective(p, bound);
+  });
+}
+
+// Where free corner v should go: search_in_plane on the worst `measure` around it (its nodes
+// placed by place_corner). Leaves every node as it was.
+template <class Measure>
+Vec2 search_corner(Curving& cv, int v, const Measure& measure) {
+  const CurvedForm::Snapshot saved = cv.form.snapshot(cv.mesh.triangles_of(v));
+  return search_in_plane(cv, v, cv.form.at(v), [&](const Vec2& p, double bound) {
     cv.form.place_corner(v, p);
     const double worst = star_worst(cv, v, measure, bound);
     cv.form.restore(saved);

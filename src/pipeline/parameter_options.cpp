@@ -84,8 +84,8 @@ std::vector<ParameterOption> limit_options() {
        "of memory",
        CURVEMESH_FIELD(limits.max_triangles, std::size_t)},
       {"--threads", "--threads", "threads", "", "limits", Kind::integer, 0, 4096, false, 0, {},
-       "threads one run may use (0: every hardware thread); the mesh is the same, byte for byte, whatever the "
-       "number",
+       "threads one run may use (0: every hardware thread); what it writes is the same, byte for byte, whatever "
+       "the number",
        CURVEMESH_FIELD(threads, int)},
   };
 }

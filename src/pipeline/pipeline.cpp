@@ -56,34 +56,34 @@ Json optimize_json(const optimize::Stats& s) {
 
 Json curve_json(const curve::Stats& s, const curve::Options& o, double d) {
   Json out = {{"split_triangles", s.split_triangles},
-          {"primary_edges", s.primary_edges},
-          {"curved_edges", s.curved_edges},
-          {"fitted_edges", s.fitted_edges},
-          {"straight_primary_edges", s.straight_primary_edges},
-          {"curved_triangles", s.curved_triangles},
-          {"alternative_centres", s.alternative_centres},
-          {"invalid_triangles", s.invalid_triangles},
-          {"min_scaled_jacobian", s.min_scaled_jacobian},
-          {"max_amips_before_smoothing", s.max_amips_before_smoothing},
-          {"smoothing_moves", s.smoothing_moves},
-          {"curved_splits", s.curved_splits},
-          {"curved_collapses", s.curved_collapses},
-          {"coarsening_collapses", s.coarsening_collapses},
-          {"curved_swaps", s.curved_swaps},
-          {"late_projections", s.late_projections},
-          {"projections_elsewhere", s.projections_elsewhere},
-          {"cleared_projections", s.cleared_projections},
-          {"repaired_moves", s.repaired_moves},
-          {"refused_moves", s.refused_moves},
-          {"max_amips", s.max_amips},
-          {"mean_amips", s.mean_amips},
-          {"smallest_wedge_deg", s.wedges.smallest_wedge * 180 / std::numbers::pi},
-          {"wedge_amips_bound", s.wedges.smallest_wedge_bound},
-          {"sharp_triangles", s.wedges.sharp_triangles},
-          {"max_amips_elsewhere", s.wedges.max_amips_elsewhere},
-          {"max_distance", s.max_distance},
-          {"max_distance_rel", s.max_distance / d},
-          {"mean_fit_distance_rel", s.mean_fit_distance / d}};
+              {"primary_edges", s.primary_edges},
+              {"curved_edges", s.curved_edges},
+              {"fitted_edges", s.fitted_edges},
+              {"straight_primary_edges", s.straight_primary_edges},
+              {"curved_triangles", s.curved_triangles},
+              {"alternative_centres", s.alternative_centres},
+              {"invalid_triangles", s.invalid_triangles},
+              {"min_scaled_jacobian", s.min_scaled_jacobian},
+              {"max_amips_before_smoothing", s.max_amips_before_smoothing},
+              {"smoothing_moves", s.smoothing_moves},
+              {"curved_splits", s.curved_splits},
+              {"curved_collapses", s.curved_collapses},
+              {"coarsening_collapses", s.coarsening_collapses},
+              {"curved_swaps", s.curved_swaps},
+              {"late_projections", s.late_projections},
+              {"projections_elsewhere", s.projections_elsewhere},
+              {"cleared_projections", s.cleared_projections},
+              {"repaired_moves", s.repaired_moves},
+              {"refused_moves", s.refused_moves},
+              {"max_amips", s.max_amips},
+              {"mean_amips", s.mean_amips},
+              {"smallest_wedge_deg", s.wedges.smallest_wedge * 180 / std::numbers::pi},
+              {"wedge_amips_bound", s.wedges.smallest_wedge_bound},
+              {"sharp_triangles", s.wedges.sharp_triangles},
+              {"max_amips_elsewhere", s.wedges.max_amips_elsewhere},
+              {"max_distance", s.max_distance},
+              {"max_distance_rel", s.max_distance / d},
+              {"mean_fit_distance_rel", s.mean_fit_distance / d}};
   if (o.order == 2) {
     out["tolerance"] = o.tolerance;
     out["tolerance_rel"] = o.tolerance / d;
@@ -134,8 +134,8 @@ double finite_diagonal(const geometry::Box2& box, const std::string& name) {
     throw invalid(name + ": " + problem);
   const double d = box.diagonal();  // within the range checked: no overflow or underflow
   if (!box.empty()) {
-    const double far = std::max({std::abs(box.min.x()), std::abs(box.min.y()), std::abs(box.max.x()),
-                                 std::abs(box.max.y())});
+    const double far = std::max(
+        {std::abs(box.min.x()), std::abs(box.min.y()), std::abs(box.max.x()), std::abs(box.max.y())});
     const double spacing = std::nextafter(far, std::numeric_limits<double>::infinity()) - far;
     const double size = d > 0 ? d : 1.0;
     if (spacing > std::ldexp(size, -30)) {
@@ -183,7 +183,8 @@ void warn_narrow_strokes(const Result& r, const regions::ClassifyOptions& c,
   if (count == 0) return;
   std::ostringstream s;
   s << count << " stroke" << (count == 1 ? " is" : "s are") << " narrower than --min-stroke-width ("
-    << r.parameters.min_stroke_width_rel << " of the drawing's diagonal), down to " << narrowest / r.resolved.d
+    << r.parameters.min_stroke_width_rel << " of the drawing's diagonal), down to "
+    << narrowest / r.resolved.d
     << " of it: they paint nothing in the mesh; a --min-stroke-width below that would keep them, with a mesh "
        "fine enough to hold their width";
   warn(s.str());
@@ -197,9 +198,11 @@ void paint(Result& r, const std::function<void(const std::string&)>& warn) {
   const auto t = Clock::now();
   const io::HighOrderMesh whole = r.curved ? io::curved_mesh(*r.curved) : io::linear_mesh(r.linear);
   if (reads_paint(o)) {
-    if (r.soup.fills.empty()) warn("no element is filled (fill none, or strokes only): every face is background");
+    if (r.soup.fills.empty())
+      warn("no element is filled (fill none, or strokes only): every face is background");
     if (r.soup.clipped_elements > 0)
-      warn(std::to_string(r.soup.clipped_elements) + " element" + (r.soup.clipped_elements == 1 ? " has" : "s have") +
+      warn(std::to_string(r.soup.clipped_elements) + " element" +
+           (r.soup.clipped_elements == 1 ? " has" : "s have") +
            " a mask, or a clip path the regions cannot apply (objectBoundingBox units, text in it): their "
            "fills count unmasked, unclipped");
     regions::ClassifyOptions c;
@@ -212,8 +215,8 @@ void paint(Result& r, const std::function<void(const std::string&)>& warn) {
     } catch (const regions::Undecided& e) {
       const svg::SourceElement& s = r.soup.sources.at(r.soup.fills.at(e.layer).source);
       throw internal(r.name + ": cannot decide on which side of the outline of <" + s.tag +
-                     (s.id.empty() ? "" : " id=\"" + s.id + "\"") + "> (line " + std::to_string(s.line) + ") face " +
-                     std::to_string(e.face) + " of the mesh lies");
+                     (s.id.empty() ? "" : " id=\"" + s.id + "\"") + "> (line " + std::to_string(s.line) +
+                     ") face " + std::to_string(e.face) + " of the mesh lies");
     }
   } else {
     r.classification.faces = regions::find_faces(whole);
@@ -339,8 +342,8 @@ void report(const RunOptions& options, Stage stage, int pass = 0, int triangles 
 
 // §3: the drawing read (a .poly file gives its features directly) and the lengths resolved
 // against its bounding-box diagonal; then, unless `last` is the read, the features found.
-void read_stage(Result& r, const Source& source, const Parameters& parameters, const RunOptions& options, Stage last,
-                const Warn& warn) {
+void read_stage(Result& r, const Source& source, const Parameters& parameters, const RunOptions& options,
+                Stage last, const Warn& warn) {
   Json& stats = r.stats;
   auto t = Clock::now();
   try {
@@ -396,8 +399,10 @@ void features_json(Result& r) {
   for (const auto& s : f.sections) primary += s.kind == features::Kind::primary;
   // μ and ε as the stages took them: smaller than the parameters' when strokes read as areas need it.
   const features::Lengths& l = r.resolved.features;
-  r.stats["features"] = {{"primary_sections", primary}, {"secondary_segments", f.segments.size()},
-                         {"points", f.points.size()},   {"mu_rel", l.mu / l.d},
+  r.stats["features"] = {{"primary_sections", primary},
+                         {"secondary_segments", f.segments.size()},
+                         {"points", f.points.size()},
+                         {"mu_rel", l.mu / l.d},
                          {"epsilon_rel", l.epsilon / l.d}};
 }
 
@@ -405,7 +410,8 @@ void features_json(Result& r) {
 void triangulate_stage(Result& r, const std::string& name, const Warn& warn) {
   const features::Features& f = r.features;
   if (f.box.empty()) throw invalid(name + ": nothing to mesh (no curves, segments or points)");
-  if (f.sections.empty() && f.segments.empty() && f.points.empty()) warn("nothing is drawn; meshing the canvas alone");
+  if (f.sections.empty() && f.segments.empty() && f.points.empty())
+    warn("nothing is drawn; meshing the canvas alone");
   const auto t = Clock::now();
   triangulate::Result tri = triangulate::triangulate(f, r.resolved.triangulate);
   r.stats["seconds"]["triangulate"] = seconds_since(t);
@@ -484,10 +490,7 @@ Result run_stages(const Source& source, const Parameters& parameters, const RunO
   return r;
 }
 
-}  // namespace
-
-namespace {
-
+// The stages, then the mesh as every writer and the API give it out.
 Result run_and_group(const Source& source, const Parameters& parameters, const RunOptions& options) {
   Result r = run_stages(source, parameters, options);
   if (r.last >= Stage::triangulate) {

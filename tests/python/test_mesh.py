@@ -259,8 +259,12 @@ def test_check(order, examples, run_cli, tmp_path):
         curvemesh.check(tmp_path / "missing.msh")
     with pytest.raises(TypeError):
         curvemesh.check(42)
-    for threads in (-1, 4097, 1.5, True):
-        with pytest.raises(ValueError, match="threads"):
+    for threads, message in ((-1, r"--threads \(-1\) must be an integer in \[0, 4096\]"),
+                             (4097, r"--threads \(4097\) is out of range")):
+        with pytest.raises(ValueError, match=message):
+            curvemesh.check(m, threads=threads)
+    for threads in (1.5, True):  # as mesh() takes the option
+        with pytest.raises(TypeError, match="threads must be"):
             curvemesh.check(m, threads=threads)
 
 
