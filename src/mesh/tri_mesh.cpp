@@ -65,10 +65,13 @@ void TriMesh::set_exact_position(int v, const ExactPoint& p) {
   exact_points_.push_back(p);
 }
 
-ExactPoint TriMesh::exact_or_double(int v) const { return has_exact(v) ? exact(v) : ExactPoint(points_[v]); }
+ExactPoint TriMesh::exact_or_double(int v) const {
+  return has_exact(v) ? exact(v) : ExactPoint(points_[v]);
+}
 
 int TriMesh::exact_vertex_count() const {
-  return static_cast<int>(std::count_if(exact_index_.begin(), exact_index_.end(), [](int i) { return i >= 0; }));
+  return static_cast<int>(
+      std::count_if(exact_index_.begin(), exact_index_.end(), [](int i) { return i >= 0; }));
 }
 
 void TriMesh::set_tag(int v, const VertexTag& tag) {
@@ -86,9 +89,12 @@ const EdgeFeature* TriMesh::feature(int a, int b) const {
 void TriMesh::put_feature(int a, int b, const EdgeFeature& f) {
   for (const auto& [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
     auto& list = tagged_[x];
-    const auto it = std::lower_bound(list.begin(), list.end(), y, [](const TaggedEdge& e, int v) { return e.other < v; });
-    if (it != list.end() && it->other == y) it->feature = f;
-    else list.insert(it, {y, f});
+    const auto it =
+        std::lower_bound(list.begin(), list.end(), y, [](const TaggedEdge& e, int v) { return e.other < v; });
+    if (it != list.end() && it->other == y)
+      it->feature = f;
+    else
+      list.insert(it, {y, f});
     has_tagged_[x] = 1;
   }
 }
@@ -97,7 +103,8 @@ void TriMesh::erase_feature(int a, int b) {
   for (const auto& [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
     auto& list = tagged_[x];
     const int other = y;  // clang 14 cannot capture a structured binding
-    const auto it = std::find_if(list.begin(), list.end(), [other](const TaggedEdge& e) { return e.other == other; });
+    const auto it =
+        std::find_if(list.begin(), list.end(), [other](const TaggedEdge& e) { return e.other == other; });
     if (it != list.end()) list.erase(it);
     has_tagged_[x] = !list.empty();
   }
@@ -106,7 +113,9 @@ void TriMesh::erase_feature(int a, int b) {
 void TriMesh::set_feature(int a, int b, const EdgeFeature& f) {
   if (journal_open()) {
     const EdgeFeature* old = feature(a, b);
-    record({.kind = Change::Kind::feature, .lo = std::min(a, b), .hi = std::max(a, b),
+    record({.kind = Change::Kind::feature,
+            .lo = std::min(a, b),
+            .hi = std::max(a, b),
             .feature = old ? std::optional(*old) : std::nullopt});
   }
   put_feature(a, b, f);
@@ -173,8 +182,10 @@ void TriMesh::undo(const Change& c) {
       vertex_tags_[c.index] = c.tag;
       break;
     case Change::Kind::feature:
-      if (c.feature) put_feature(c.lo, c.hi, *c.feature);
-      else erase_feature(c.lo, c.hi);
+      if (c.feature)
+        put_feature(c.lo, c.hi, *c.feature);
+      else
+        erase_feature(c.lo, c.hi);
       break;
   }
 }

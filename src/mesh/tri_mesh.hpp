@@ -79,7 +79,7 @@ class TriMesh {
   void remove_triangle(int t);  // marks it dead; `compact` reclaims it
   // Replaces the corners of an alive triangle (counter-clockwise), updating incidence.
   void set_triangle(int t, const Triangle& corners);
-  void set_position(int v, const Vec2& p);  // also drops an exact position
+  void set_position(int v, const Vec2& p);              // also drops an exact position
   void set_exact_position(int v, const ExactPoint& p);  // keeps `point(v)` as its nearest double
   void set_tag(int v, const VertexTag& tag);
   void set_feature(int a, int b, const EdgeFeature& f);
@@ -158,7 +158,15 @@ class TriMesh {
   int alive_triangles_ = 0;
 
   struct Change {
-    enum class Kind : std::uint8_t { add_vertex, add_triangle, remove_triangle, set_triangle, position, tag, feature };
+    enum class Kind : std::uint8_t {
+      add_vertex,
+      add_triangle,
+      remove_triangle,
+      set_triangle,
+      position,
+      tag,
+      feature
+    };
     Kind kind;
     int index = -1;  // vertex or triangle
     Triangle corners{};

@@ -16,11 +16,10 @@
 
 namespace curvemesh::optimize {
 
-using mesh::TriMesh;
 using geometry::Vec2;
+using mesh::TriMesh;
 
 namespace {
-
 
 struct Edge {
   int a, b;  // a < b
@@ -42,7 +41,8 @@ std::vector<Edge> edges_where(const TriMesh& m, const Keep& keep) {  // keep(Edg
   const auto has_directed = [&](int a, int b) {
     for (int t : m.triangles_of(a)) {
       const auto& tri = m.triangle(t);
-      if ((tri[0] == a && tri[1] == b) || (tri[1] == a && tri[2] == b) || (tri[2] == a && tri[0] == b)) return true;
+      if ((tri[0] == a && tri[1] == b) || (tri[1] == a && tri[2] == b) || (tri[2] == a && tri[0] == b))
+        return true;
     }
     return false;
   };
@@ -91,7 +91,8 @@ std::vector<Edge> collapse_candidates(const TriMesh& m, const Below& below, cons
     e.b_moves = mesh::collapse_allowed_by_kind(m, e.b, e.a);
     return e.a_moves || e.b_moves;
   });
-  std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.length < y.length; });
+  std::stable_sort(edges.begin(), edges.end(),
+                   [](const Edge& x, const Edge& y) { return x.length < y.length; });
   return edges;
 }
 
@@ -190,7 +191,8 @@ std::vector<double> initial_sizes(const TriMesh& m, double target, double factor
   for (const Edge& e : all_edges(m)) {
     const mesh::EdgeFeature* f = m.feature(e.a, e.b);
     const bool curve_edge = f && f->kind == mesh::EdgeKind::primary && pinned(e.a) && pinned(e.b);
-    const bool fixed_pair = m.tag(e.a).kind == mesh::VertexKind::fixed && m.tag(e.b).kind == mesh::VertexKind::fixed;
+    const bool fixed_pair =
+        m.tag(e.a).kind == mesh::VertexKind::fixed && m.tag(e.b).kind == mesh::VertexKind::fixed;
     if (curve_edge || fixed_pair) {
       size[e.a] = std::min(size[e.a], factor * e.length);
       size[e.b] = std::min(size[e.b], factor * e.length);
@@ -213,7 +215,9 @@ double min_angle_deg(const TriMesh& m) {
 
 }  // namespace
 
-Quality measure(const TriMesh& m) { return measure(m, true); }
+Quality measure(const TriMesh& m) {
+  return measure(m, true);
+}
 
 Quality measure(const TriMesh& m, bool mean_edge_length) {
   Quality q;
@@ -331,13 +335,17 @@ double star_curved(const TriMesh& m, const mesh::Constraints& c, int v) {
 // the last round began, shortest first, each vertex touched once; every new triangle at most
 // max(stop energy, the worst it replaces), as in the loop, and no new edge longer than 5/3 of the
 // target; in the curved pipeline, curved_test too. Returns the number kept.
-long coarsening_collapses(TriMesh& m, const mesh::Constraints& c, const Options& o, StarClock& clock, long since) {
+long coarsening_collapses(TriMesh& m, const mesh::Constraints& c, const Options& o, StarClock& clock,
+                          long since) {
   const double target = o.edge_length;
   const mesh::CollapseTest short_enough = [&](int from, int to) {
-    return mesh::collapse_keeps_edges_short(m, from, to, [&](int, int) { return mesh::kCoarseningScale * target; });
+    return mesh::collapse_keeps_edges_short(m, from, to,
+                                            [&](int, int) { return mesh::kCoarseningScale * target; });
   };
   const auto collapse = [&](int from, int to) {
-    const auto operation = [&] { return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough); };
+    const auto operation = [&] {
+      return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough);
+    };
     if (!o.curved) return operation();
     return curved_test(
         m, o, clock, from, to, operation, [&] { return star_curved(m, c, to); },
@@ -376,7 +384,9 @@ int coarsening_swaps(TriMesh& m, const mesh::Constraints& c, const Options& o, S
     std::array<int, 2> slots{-1, -1};
     const auto operation = [&] { return mesh::swap_edge(m, a, b, 0, t, &slots); };
     if (!o.curved) return operation();
-    const auto worst_in_slots = [&] { return std::max(curved_energy(m, c, slots[0]), curved_energy(m, c, slots[1])); };
+    const auto worst_in_slots = [&] {
+      return std::max(curved_energy(m, c, slots[0]), curved_energy(m, c, slots[1]));
+    };
     return curved_test(m, o, clock, a, b, operation, worst_in_slots, worst_in_slots);
   };
   return swap_pass(
@@ -452,11 +462,13 @@ struct Sizing {
 
 // Splits the edges longer than 4/3 of their target, longest first; returns the number of splits.
 long split_long_edges(TriMesh& m, const mesh::Constraints& c, const Options& o, Sizing& sizing, Stats& s) {
-  auto edges = edges_where(m, [&](const Edge& e) { return !(e.length <= mesh::kSplitAbove * sizing.edge(e.a, e.b)); });
+  auto edges =
+      edges_where(m, [&](const Edge& e) { return !(e.length <= mesh::kSplitAbove * sizing.edge(e.a, e.b)); });
   // Each split adds two triangles (one on the box's side): refused before the mesh grows.
   base::check_triangles(std::size_t(m.triangle_count()) + 2 * edges.size(), o.max_triangles,
                         "to meet the edge length, " + std::to_string(edges.size()) + " edges would be split");
-  std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.length > y.length; });
+  std::stable_sort(edges.begin(), edges.end(),
+                   [](const Edge& x, const Edge& y) { return x.length > y.length; });
   long splits = 0;
   for (const Edge& e : edges) {
     const int v = mesh::split_edge(m, c, e.a, e.b, o.stop_max_amips);
@@ -474,14 +486,16 @@ long split_long_edges(TriMesh& m, const mesh::Constraints& c, const Options& o, 
 
 // Collapses the edges shorter than 4/5 of their target, shortest first; an edge whose ends
 // changed is looked at again in the next iteration. Returns the number of collapses.
-long collapse_short_edges(TriMesh& m, const mesh::Constraints& c, const Options& o, const Sizing& sizing, Stats& s) {
+long collapse_short_edges(TriMesh& m, const mesh::Constraints& c, const Options& o, const Sizing& sizing,
+                          Stats& s) {
   const auto edge_target = [&](int a, int b) { return sizing.edge(a, b); };
   // Which end may move along the edge, by the kinds, is asked once: the kinds stay while the
   // edge's ends are not touched, and a touched edge is not looked at again. An edge neither of
   // whose ends may move is not sorted (at 16,000 curves, half the refusals), and a direction the
   // kinds refuse is not tried.
   const std::vector<Edge> edges = collapse_candidates(
-      m, [&](int a, int b) { return mesh::kCollapseBelow * edge_target(a, b); }, [](int, int) { return true; });
+      m, [&](int a, int b) { return mesh::kCollapseBelow * edge_target(a, b); },
+      [](int, int) { return true; });
   // The length test after the tests on tags and curves: they refuse most collapses (at 16,000
   // curves, every edge is shorter than the target, and most are on or next to a curve), and cost
   // least.
@@ -489,7 +503,8 @@ long collapse_short_edges(TriMesh& m, const mesh::Constraints& c, const Options&
     return mesh::collapse_keeps_edges_short(m, from, to, edge_target);
   };
   const long collapses = collapse_each_once(
-      m, edges, [&](int from, int to) { return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough); },
+      m, edges,
+      [&](int from, int to) { return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough); },
       [](int, int) {});
   s.collapses += collapses;
   return collapses;
@@ -537,7 +552,8 @@ void smooth_bad_again(TriMesh& m, const mesh::Constraints& c, const Options& o, 
 // Secondary chords beside a path of feature edges, in triangles that stay bad: released. The same
 // sweep measures the pass (the largest and the summed energy): releasing moves no vertex, and the
 // compaction that follows keeps the triangles' order, so these are measure's after it.
-std::pair<double, double> release_and_measure(TriMesh& m, const mesh::Constraints& c, const Options& o, Stats& s) {
+std::pair<double, double> release_and_measure(TriMesh& m, const mesh::Constraints& c, const Options& o,
+                                              Stats& s) {
   double max_e = 0, sum_e = 0;
   for (int t = 0; t < m.triangle_slots(); ++t) {
     if (!m.alive(t)) continue;
@@ -622,7 +638,8 @@ Quality pass_quality(const TriMesh& m, const Options& o, std::pair<double, doubl
 void report_pass(const Options& o, int iteration, const Quality& q, long changes) {
   if (o.log)
     *o.log << "optimize: iteration " << iteration << ": " << q.triangles << " triangles, min angle "
-           << q.min_angle_deg << ", max AMIPS " << q.max_amips << ", " << changes << " splits and collapses" << "\n";
+           << q.min_angle_deg << ", max AMIPS " << q.max_amips << ", " << changes << " splits and collapses"
+           << "\n";
   if (o.on_iteration) o.on_iteration(iteration, q.triangles, q.max_amips);
 }
 
