@@ -22,7 +22,7 @@ int TriMesh::add_triangle(int a, int b, int c) {
   record({.kind = Change::Kind::add_triangle});
   triangles_.push_back({a, b, c});
   link(t);
-  ++alive_triangles_;
+  alive_triangles_.add(1);
   return t;
 }
 
@@ -42,7 +42,7 @@ void TriMesh::remove_triangle(int t) {
   record({.kind = Change::Kind::remove_triangle, .index = t, .corners = triangles_[t]});
   unlink(t);
   triangles_[t] = {-1, -1, -1};
-  --alive_triangles_;
+  alive_triangles_.add(-1);
 }
 
 void TriMesh::set_triangle(int t, const Triangle& corners) {
@@ -91,11 +91,12 @@ void TriMesh::put_feature(int a, int b, const EdgeFeature& f) {
     auto& list = tagged_[x];
     const auto it =
         std::lower_bound(list.begin(), list.end(), y, [](const TaggedEdge& e, int v) { return e.other < v; });
-    if (it != list.end() && it->other == y)
-      it->feature = f;
-    else
+    if (it != list.end() && it->other == y) {
+      it->feature = f;  // the lists keep their length: vertices apart may retag their own edges side by side
+    } else {
       list.insert(it, {y, f});
-    has_tagged_[x] = 1;
+      has_tagged_[x] = 1;
+    }
   }
 }
 
@@ -162,12 +163,12 @@ void TriMesh::undo(const Change& c) {
     case Change::Kind::add_triangle:
       unlink(triangle_slots() - 1);
       triangles_.pop_back();
-      --alive_triangles_;
+      alive_triangles_.add(-1);
       break;
     case Change::Kind::remove_triangle:
       triangles_[c.index] = c.corners;
       link(c.index);
-      ++alive_triangles_;
+      alive_triangles_.add(1);
       break;
     case Change::Kind::set_triangle:
       unlink(c.index);
@@ -308,7 +309,7 @@ std::vector<int> TriMesh::compact() {
   }
   for (int t = 0; t < triangle_slots(); ++t)
     for (int v : triangles_[t]) vertex_triangles_[v].push_back(t);
-  alive_triangles_ = triangle_slots();
+  alive_triangles_.n = triangle_slots();
   return remap;
 }
 

@@ -7,6 +7,7 @@
 // position (§4.1, the hybrid kernel of TetWild) until an operation moves them to doubles.
 // Orientation is always decided exactly on the coordinates as stored.
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -155,7 +156,19 @@ class TriMesh {
   std::vector<std::uint8_t> has_tagged_;
   void put_feature(int a, int b, const EdgeFeature& f);  // inserts or overwrites, unrecorded
   void erase_feature(int a, int b);                      // unrecorded; none is fine
-  int alive_triangles_ = 0;
+  // Atomic: operations in parts of the mesh apart remove triangles side by side (mesh/schedule.hpp).
+  struct Count {
+    std::atomic<int> n{0};
+    Count() = default;
+    Count(const Count& o) : n(o.n.load(std::memory_order_relaxed)) {}
+    Count& operator=(const Count& o) {
+      n.store(o.n.load(std::memory_order_relaxed), std::memory_order_relaxed);
+      return *this;
+    }
+    operator int() const { return n.load(std::memory_order_relaxed); }
+    void add(int k) { n.fetch_add(k, std::memory_order_relaxed); }
+  };
+  Count alive_triangles_;
 
   struct Change {
     enum class Kind : std::uint8_t {

@@ -9,10 +9,12 @@
 #include <string>
 
 #include "base/limits.hpp"
+#include "base/parallel.hpp"
 #include "geometry/amips.hpp"
 #include "geometry/p3_triangle.hpp"
 #include "mesh/curved_element.hpp"
 #include "mesh/operations.hpp"
+#include "mesh/schedule.hpp"
 
 namespace curvemesh::optimize {
 
@@ -143,10 +145,41 @@ int swap_pass(TriMesh& m, const Wanted& wanted, const Swap& swap, const Swapped&
   return swaps;
 }
 
+// How many vertices a part of the mesh has at most when local operations run part by part
+// (mesh::spatial_parts): a count of the mesh's own, so that the parts, and the result, do not
+// depend on the number of threads. Parts of this size leave about a tenth of the operations on
+// their borders, done one after another after the parts.
+constexpr int kPartSize = 2048;
+
 int swap_pass(TriMesh& m) {
   return swap_pass(
       m, [](int, int) { return true; }, [&](int a, int b, int t) { return mesh::swap_edge(m, a, b, 0, t); },
       [](int, int) {});
+}
+
+// The iterations' swap pass, part by part (mesh::for_each_in_parts): a swap of (a, b) reads and
+// rewrites its two triangles and reads the stars of their corners, all in the stars of a and b.
+int swap_pass_in_parts(TriMesh& m, const mesh::Parts& parts) {
+  struct Candidate {
+    int a, b, t;
+  };
+  std::vector<Candidate> candidates;
+  for (int t = 0; t < m.triangle_slots(); ++t) {
+    const auto tri = m.triangle(t);
+    if (tri[0] < 0) continue;
+    for (int i = 0; i < 3; ++i)
+      if (tri[i] < tri[(i + 1) % 3]) candidates.push_back({tri[i], tri[(i + 1) % 3], t});
+  }
+  std::vector<char> swapped(candidates.size(), 0);
+  mesh::for_each_in_parts(
+      parts, candidates.size(),
+      [&](std::size_t i) {
+        return std::pair{candidates[i].a, candidates[i].b};
+      },
+      [&](std::size_t i) {
+        swapped[i] = mesh::swap_edge(m, candidates[i].a, candidates[i].b, 0, candidates[i].t);
+      });
+  return static_cast<int>(std::count(swapped.begin(), swapped.end(), 1));
 }
 
 // Lipschitz grading of a per-vertex sizing field over the mesh edges: no vertex asks for more
@@ -211,6 +244,15 @@ double min_angle_deg(const TriMesh& m) {
     min_angle = std::min(min_angle, geometry::min_angle(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])));
   }
   return m.triangle_count() ? min_angle * 180 / std::numbers::pi : 0;
+}
+
+// The vertices with a star that `wanted` wants, ascending.
+template <class Wanted>
+std::vector<int> vertices_where(const TriMesh& m, const Wanted& wanted) {
+  std::vector<int> vertices;
+  for (int v = 0; v < m.vertex_count(); ++v)
+    if (!m.triangles_of(v).empty() && wanted(v)) vertices.push_back(v);
+  return vertices;
 }
 
 }  // namespace
@@ -403,12 +445,18 @@ int coarsening_swaps(TriMesh& m, const mesh::Constraints& c, const Options& o, S
 }
 
 // Smoothing where this round's collapses and swaps changed a star (the loop left the rest
-// smoothed); returns the number of moves.
+// smoothed), part by part; returns the number of moves.
 int smooth_reshaped(TriMesh& m, const mesh::Constraints& c, StarClock& clock, long round_start) {
+  const std::vector<int> vertices = vertices_where(m, [&](int v) {
+    return clock.reshaped[v] >= round_start && !m.has_exact(v) &&
+           !(m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve);
+  });
+  std::vector<char> moved(m.vertex_count(), 0);
+  mesh::for_each_vertex_in_parts(mesh::spatial_parts(m, kPartSize), vertices,
+                                 [&](int v) { moved[v] = mesh::smooth_vertex(m, c, v); });
   int moves = 0;
-  for (int v = 0; v < m.vertex_count(); ++v)
-    if (clock.reshaped[v] >= round_start && !m.triangles_of(v).empty() && !m.has_exact(v) &&
-        !(m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) && mesh::smooth_vertex(m, c, v)) {
+  for (int v : vertices)
+    if (moved[v]) {
       ++moves;
       clock.tick();
       clock.star_changed(m, v, false);
@@ -487,7 +535,7 @@ long split_long_edges(TriMesh& m, const mesh::Constraints& c, const Options& o, 
 // Collapses the edges shorter than 4/5 of their target, shortest first; an edge whose ends
 // changed is looked at again in the next iteration. Returns the number of collapses.
 long collapse_short_edges(TriMesh& m, const mesh::Constraints& c, const Options& o, const Sizing& sizing,
-                          Stats& s) {
+                          const mesh::Parts& parts, Stats& s) {
   const auto edge_target = [&](int a, int b) { return sizing.edge(a, b); };
   // Which end may move along the edge, by the kinds, is asked once: the kinds stay while the
   // edge's ends are not touched, and a touched edge is not looked at again. An edge neither of
@@ -502,50 +550,69 @@ long collapse_short_edges(TriMesh& m, const mesh::Constraints& c, const Options&
   const mesh::CollapseTest short_enough = [&](int from, int to) {
     return mesh::collapse_keeps_edges_short(m, from, to, edge_target);
   };
-  const long collapses = collapse_each_once(
-      m, edges,
-      [&](int from, int to) { return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough); },
-      [](int, int) {});
+  // Part by part (mesh::for_each_in_parts): a collapse reads the stars of its two ends and
+  // rewrites that of the one that goes; each vertex is touched once, as in collapse_each_once.
+  std::vector<char> touched(m.vertex_count(), 0), kept(edges.size(), 0);
+  mesh::for_each_in_parts(
+      parts, edges.size(),
+      [&](std::size_t i) {
+        return std::pair{edges[i].a, edges[i].b};
+      },
+      [&](std::size_t i) {
+        const Edge& e = edges[i];
+        if (touched[e.a] || touched[e.b]) return;
+        const auto collapse = [&](int from, int to) {
+          return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough);
+        };
+        if ((e.a_moves && collapse(e.a, e.b)) || (e.b_moves && collapse(e.b, e.a)))
+          kept[i] = touched[e.a] = touched[e.b] = 1;
+      });
+  const long collapses = std::count(kept.begin(), kept.end(), 1);
   s.collapses += collapses;
   return collapses;
 }
 
 // Every vertex smoothed, a feature vertex off its curve projected onto it (Fig. 8), an exact
-// vertex rounded to doubles where that inverts nothing.
-void smooth_all(TriMesh& m, const mesh::Constraints& c, const Options& o, Stats& s) {
-  for (int v = 0; v < m.vertex_count(); ++v) {
-    if (m.triangles_of(v).empty()) continue;
-    if (m.has_exact(v)) {
+// vertex rounded to doubles where that inverts nothing; part by part (each of these moves v
+// alone, and retags v's own edges).
+void smooth_all(TriMesh& m, const mesh::Constraints& c, const Options& o, const mesh::Parts& parts,
+                Stats& s) {
+  enum : char { none, smoothed, projected };
+  std::vector<char> what(m.vertex_count(), none);
+  const auto move = [&](int v) {
+    if (m.has_exact(v))
       mesh::round_vertex(m, c, v);
-    } else if (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve) {
-      if (mesh::project_vertex(m, c, v, o.stop_max_amips)) ++s.projections;
-    } else if (mesh::smooth_vertex(m, c, v)) {
-      ++s.smooths;
-    }
-  }
+    else if (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve)
+      what[v] = mesh::project_vertex(m, c, v, o.stop_max_amips) ? projected : none;
+    else
+      what[v] = mesh::smooth_vertex(m, c, v) ? smoothed : none;
+  };
+  mesh::for_each_vertex_in_parts(parts, vertices_where(m, [](int) { return true; }), move);
+  s.smooths += std::count(what.begin(), what.end(), smoothed);
+  s.projections += std::count(what.begin(), what.end(), projected);
 }
 
 // The vertices of the triangles that are still bad get more smoothing rounds of their own: one
 // Newton step per pass lowers a sliver's energy by a constant factor only, and a sliver that
 // starts at AMIPS 1e4 would otherwise cost a dozen passes over the whole mesh.
-void smooth_bad_again(TriMesh& m, const mesh::Constraints& c, const Options& o, Stats& s) {
-  std::vector<int> bad;
+void smooth_bad_again(TriMesh& m, const mesh::Constraints& c, const Options& o, const mesh::Parts& parts,
+                      Stats& s) {
+  std::vector<char> bad(m.vertex_count(), 0);
   for (int t = 0; t < m.triangle_slots(); ++t) {
     if (!m.alive(t)) continue;
     const auto& tri = m.triangle(t);
     if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) > o.stop_max_amips)
-      bad.insert(bad.end(), tri.begin(), tri.end());
+      for (int v : tri) bad[v] = 1;
   }
-  std::sort(bad.begin(), bad.end());
-  bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
-  std::erase_if(bad, [&](int v) {
-    return m.has_exact(v) || (m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve);
+  const std::vector<int> vertices = vertices_where(m, [&](int v) {
+    return bad[v] && !m.has_exact(v) && !(m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve);
   });
   for (int round = 0; round < o.extra_smoothing_rounds; ++round) {
-    int moved = 0;
-    for (int v : bad) moved += mesh::smooth_vertex(m, c, v);
-    s.smooths += moved;
-    if (moved == 0) break;
+    std::vector<char> moved(m.vertex_count(), 0);
+    mesh::for_each_vertex_in_parts(parts, vertices, [&](int v) { moved[v] = mesh::smooth_vertex(m, c, v); });
+    const long count = std::count(moved.begin(), moved.end(), 1);
+    s.smooths += count;
+    if (count == 0) break;
   }
 }
 
@@ -707,11 +774,15 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
   StopRule stop(s.initial.max_amips);
   for (; s.iterations < o.max_iterations; ++s.iterations) {
     long changes = split_long_edges(m, c, o, sizing, s);  // the sizing work done in this iteration
-    changes += collapse_short_edges(m, c, o, sizing, s);
+    // The collapses, swaps and smoothing part by part: the parts stay while no vertex is added.
+    mesh::Parts parts = mesh::spatial_parts(m, kPartSize);
+    changes += collapse_short_edges(m, c, o, sizing, parts, s);
+    mesh::mark_inner(m, parts);
     // Swaps where they lower the larger energy of the two triangles.
-    s.swaps += swap_pass(m);
-    smooth_all(m, c, o, s);
-    smooth_bad_again(m, c, o, s);
+    s.swaps += swap_pass_in_parts(m, parts);
+    mesh::mark_inner(m, parts);
+    smooth_all(m, c, o, parts, s);
+    smooth_bad_again(m, c, o, parts, s);
     const auto energies = release_and_measure(m, c, o, s);
     compact(m, sizing, o.edge_length);
     const Quality q = pass_quality(m, o, energies);

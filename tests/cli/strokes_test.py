@@ -191,8 +191,11 @@ check("... and the warning says it is narrower and paints nothing",
 # Stroke sides within a hair of another curve: a vertex the optimization left off its curve had, in
 # these drawings, a neighbour between it and every place on the curve. The neighbour moves out of
 # the way first (cleared_projections), so every primary edge follows its curve, and the mesh is
-# certified by the checker.
+# certified by the checker. Whether a given mesh puts a neighbour in the way depends on the
+# optimization's order of work: the clearing must happen in one of the drawings at least (else
+# this no longer tests it), and no drawing may have a straight primary edge.
 openclipart = "/usr/share/openclipart/svg"
+cleared = {}
 for drawing in ("recreation/holiday/shamrock_for_march_natha_01.svg", "food/beverages/teacup_ganson.svg",
                 "recreation/party/cone1_ganson.svg"):
     path = os.path.join(openclipart, drawing)
@@ -206,12 +209,14 @@ for drawing in ("recreation/holiday/shamrock_for_march_natha_01.svg", "food/beve
         continue
     with open(out + ".json") as f:
         curve = json.load(f)["curve"]
-    check(f"{drawing}: a neighbour in the way moved, and the vertex reached its curve",
-          curve.get("cleared_projections", 0) >= 1, curve)
+    cleared[drawing] = curve.get("cleared_projections", 0)
     check(f"{drawing}: every primary edge follows its curve", curve["straight_primary_edges"] == 0, curve)
     c9 = run("check", out + ".msh", "--json")
     check(f"{drawing}: certified by curvemesh check", c9.returncode == 0 and json.loads(c9.stdout)["invalid"] == 0,
           c9.stdout + c9.stderr)
+if os.path.isdir(openclipart):
+    check("a neighbour in the way moved, and the vertex reached its curve, in one of the drawings at least",
+          sum(cleared.values()) >= 1, cleared)
 
 r5 = run("mesh", icon, "-o", os.path.join(tmp.name, "bad.msh"), "--strokes", "wide")
 check("--strokes refuses another value", r5.returncode == 2, r5.stderr)
