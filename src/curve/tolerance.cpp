@@ -4,9 +4,12 @@
 // bent further. Its middle node on the curve at the middle of the parameter interval already
 // gives the least distance at equal parameters (the difference is odd about the middle; moving
 // the node adds an even term), and halving the interval divides that distance by 8.
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
+#include "base/parallel.hpp"
 #include "curve/steps.hpp"
 #include "mesh/operations.hpp"
 
@@ -66,29 +69,42 @@ double edge_distance(const std::vector<Vec2>& nodes, const mesh::SectionCurve& c
   return worst;
 }
 
-double max_edge_distance(const mesh::TriMesh& m, const mesh::Constraints& c) {
+namespace {
+
+// The largest of distance(i) for i in [0, n): each measured on its own, side by side (the largest
+// of a set does not depend on the order it is taken in).
+template <class Distance>
+double largest(std::size_t n, const Distance& distance) {
+  std::vector<double> d(n, 0.0);
+  base::for_each_part(n, [&](std::size_t i) { d[i] = distance(i); });
   double worst = 0;
-  for (const auto& [edge, f] : m.sorted_features()) {
-    if (f.kind != mesh::EdgeKind::primary) continue;
-    const bool up = edge[0] < edge[1];
-    worst = std::max(worst, edge_distance({m.point(edge[0]), m.point(edge[1])}, c.sections[f.source],
-                                          up ? f.t_lo : f.t_hi, up ? f.t_hi : f.t_lo));
-  }
+  for (double x : d) worst = std::max(worst, x);
   return worst;
 }
 
+}  // namespace
+
+double max_edge_distance(const mesh::TriMesh& m, const mesh::Constraints& c) {
+  auto features = m.sorted_features();
+  std::erase_if(features, [](const auto& e) { return e.second.kind != mesh::EdgeKind::primary; });
+  return largest(features.size(), [&](std::size_t i) {
+    const auto& [edge, f] = features[i];
+    const bool up = edge[0] < edge[1];
+    return edge_distance({m.point(edge[0]), m.point(edge[1])}, c.sections[f.source], up ? f.t_lo : f.t_hi,
+                         up ? f.t_hi : f.t_lo);
+  });
+}
+
 double max_edge_distance(const CurvedMesh& cm, const mesh::Constraints& c) {
-  double worst = 0;
-  for (const FeatureLine& line : cm.lines) {
-    if (line.kind != mesh::EdgeKind::primary) continue;
+  return largest(cm.lines.size(), [&](std::size_t i) {
+    const FeatureLine& line = cm.lines[i];
+    if (line.kind != mesh::EdgeKind::primary) return 0.0;
     const int a = line.nodes[0], b = line.nodes[1];
     const mesh::EdgeFeature& f = *cm.linear.feature(a, b);
     std::vector<Vec2> nodes;
     for (int k = 0; k <= cm.order; ++k) nodes.push_back(cm.nodes[line.nodes[k]]);
-    worst = std::max(
-        worst, edge_distance(nodes, c.sections[f.source], a < b ? f.t_lo : f.t_hi, a < b ? f.t_hi : f.t_lo));
-  }
-  return worst;
+    return edge_distance(nodes, c.sections[f.source], a < b ? f.t_lo : f.t_hi, a < b ? f.t_hi : f.t_lo);
+  });
 }
 
 namespace detail {
