@@ -212,7 +212,7 @@ struct HungRing {
     p.edge_length_rel = edge_length_rel;
     drawing = pipeline::mesh_drawing(pipeline::Source::file(std::string(CURVEMESH_EXAMPLES) + "/square-with-hole.svg"), p);
     const std::vector<char> keep =
-        regions::domain_triangles({regions::find_faces(drawing.mesh), {}}, regions::Domain::evenodd);
+        regions::domain_triangles({regions::find_faces(drawing.mesh), {}, {}}, regions::Domain::evenodd);
     mesh = submesh(drawing.mesh, keep);
   }
 };

@@ -26,7 +26,7 @@ mpq_class cross(const ExactPoint& a, const ExactPoint& b, const ExactPoint& c) {
 features::Features make_features(const std::vector<std::array<Vec2, 2>>& segments, const std::vector<Vec2>& points = {}) {
   features::Features f;
   for (const auto& s : segments) {
-    f.segments.push_back({s[0], s[1], -1, 0, 1});
+    f.segments.push_back({s[0], s[1], -1, 0, 1, {}});
     f.box.add(s[0]);
     f.box.add(s[1]);
   }
@@ -283,7 +283,7 @@ TEST(Triangulate, PrimarySectionsTagVerticesWithTheirParameter) {
   f.sections.push_back(s);
   // A secondary segment crossing the polyline edge between vertices 1 and 2.
   const Vec2 mid = 0.5 * (s.polyline[1] + s.polyline[2]);
-  f.segments.push_back({mid + Vec2(0.05, -0.2), mid + Vec2(-0.05, 0.2), 8, 0, 1});
+  f.segments.push_back({mid + Vec2(0.05, -0.2), mid + Vec2(-0.05, 0.2), 8, 0, 1, {}});
   for (const Vec2& p : s.polyline) f.box.add(p);
   f.box.add(f.segments[0].a);
   f.box.add(f.segments[0].b);
