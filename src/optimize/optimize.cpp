@@ -1,10 +1,13 @@
 #include "optimize/optimize.hpp"
 
+#include <tbb/parallel_sort.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <numeric>
 #include <queue>
 #include <string>
 
@@ -28,7 +31,12 @@ struct Edge {
   double length;
   // For collapses: whether a may move onto b, whether b may move onto a (by the kinds).
   bool a_moves = false, b_moves = false;
+  int order = 0;  // its place in edges_where's list: what breaks ties when sorting
 };
+
+// Triangles per part of the sweeps that collect edges: a count of the mesh's own, so that the
+// parts, and the list, do not depend on the number of threads.
+constexpr int kSweepPart = 4096;
 
 // Every edge once, in triangle order (deterministic): an interior edge from the triangle in which
 // it runs from its lower to its higher vertex, a hull edge from its only triangle; those that
@@ -37,7 +45,8 @@ struct Edge {
 // formula checks that no hull edge was missed (a triangulated disk has V - E + T = 1); if one was
 // (the mesh is not the box's, say), every downward edge is asked. Walking a star per edge was a
 // cache miss or more each: a sixth of the optimization's time. The filter runs as the edges are
-// found: a pass that wants few of them does not write them all first.
+// found: a pass that wants few of them does not write them all first. The triangles are swept in
+// parts side by side (keep must only read), the parts' lists joined in triangle order.
 template <class Keep>
 std::vector<Edge> edges_where(const TriMesh& m, const Keep& keep) {  // keep(Edge&) may fill it in
   const auto has_directed = [&](int a, int b) {
@@ -59,24 +68,43 @@ std::vector<Edge> edges_where(const TriMesh& m, const Keep& keep) {  // keep(Edg
   }
   std::vector<Edge> edges;
   const auto collect = [&](bool all_downward) {
+    const std::size_t parts = (static_cast<std::size_t>(m.triangle_slots()) + kSweepPart - 1) / kSweepPart;
+    std::vector<std::vector<Edge>> found(parts);
+    std::vector<long> counts(parts, 0);
+    base::for_each_part(
+        parts,
+        [&](std::size_t part) {
+          const int end = std::min(m.triangle_slots(), static_cast<int>((part + 1) * kSweepPart));
+          for (int t = static_cast<int>(part * kSweepPart); t < end; ++t) {
+            if (!m.alive(t)) continue;
+            const auto& tri = m.triangle(t);
+            for (int i = 0; i < 3; ++i) {
+              const int a = tri[i], b = tri[(i + 1) % 3];
+              if (a < b || ((all_downward || (on_box[a] && on_box[b])) && !has_directed(b, a))) {
+                ++counts[part];
+                Edge e{std::min(a, b), std::max(a, b), (m.point(a) - m.point(b)).norm()};
+                if (keep(e)) found[part].push_back(e);
+              }
+            }
+          }
+        },
+        1);
     edges.clear();
-    long count = 0;
-    for (int t = 0; t < m.triangle_slots(); ++t) {
-      if (!m.alive(t)) continue;
-      const auto& tri = m.triangle(t);
-      for (int i = 0; i < 3; ++i) {
-        const int a = tri[i], b = tri[(i + 1) % 3];
-        if (a < b || ((all_downward || (on_box[a] && on_box[b])) && !has_directed(b, a))) {
-          ++count;
-          Edge e{std::min(a, b), std::max(a, b), (m.point(a) - m.point(b)).norm()};
-          if (keep(e)) edges.push_back(e);
-        }
-      }
-    }
-    return count;
+    for (const auto& f : found) edges.insert(edges.end(), f.begin(), f.end());
+    for (std::size_t i = 0; i < edges.size(); ++i) edges[i].order = static_cast<int>(i);
+    return std::accumulate(counts.begin(), counts.end(), 0L);
   };
   if (used_vertices - collect(false) + m.triangle_count() != 1) collect(true);
   return edges;
+}
+
+// Sorts edges_where's list by length, shortest first (`longest_first`: longest), ties in the
+// list's order: a stable sort's result, sorted side by side.
+void sort_by_length(std::vector<Edge>& edges, bool longest_first) {
+  tbb::parallel_sort(edges.begin(), edges.end(), [longest_first](const Edge& x, const Edge& y) {
+    if (x.length != y.length) return longest_first ? x.length > y.length : x.length < y.length;
+    return x.order < y.order;
+  });
 }
 
 std::vector<Edge> all_edges(const TriMesh& m) {
@@ -93,8 +121,7 @@ std::vector<Edge> collapse_candidates(const TriMesh& m, const Below& below, cons
     e.b_moves = mesh::collapse_allowed_by_kind(m, e.b, e.a);
     return e.a_moves || e.b_moves;
   });
-  std::stable_sort(edges.begin(), edges.end(),
-                   [](const Edge& x, const Edge& y) { return x.length < y.length; });
+  sort_by_length(edges, false);
   return edges;
 }
 
@@ -236,13 +263,34 @@ std::vector<double> initial_sizes(const TriMesh& m, double target, double factor
 }
 
 // The smallest angle of the triangles, in degrees (0 when there is none).
+// `of(t)` for every alive triangle t (0 for a dead slot), computed side by side: what a sweep
+// then adds up, in triangle order as before.
+template <class Of>
+std::vector<double> per_triangle(const TriMesh& m, const Of& of) {
+  std::vector<double> value(m.triangle_slots(), 0.0);
+  base::for_each_part(
+      value.size(),
+      [&](std::size_t t) {
+        if (!m.alive(static_cast<int>(t))) return;
+        const auto& tri = m.triangle(static_cast<int>(t));
+        value[t] = of(m.point(tri[0]), m.point(tri[1]), m.point(tri[2]));
+      },
+      1024);
+  return value;
+}
+
+std::vector<double> triangle_energies(const TriMesh& m) {
+  return per_triangle(m,
+                      [](const Vec2& a, const Vec2& b, const Vec2& c) { return geometry::amips(a, b, c); });
+}
+
+// The smallest angle of the triangles, in degrees (0 when there is none).
 double min_angle_deg(const TriMesh& m) {
+  const std::vector<double> angles = per_triangle(
+      m, [](const Vec2& a, const Vec2& b, const Vec2& c) { return geometry::min_angle(a, b, c); });
   double min_angle = std::numbers::pi;
-  for (int t = 0; t < m.triangle_slots(); ++t) {
-    if (!m.alive(t)) continue;
-    const auto& tri = m.triangle(t);
-    min_angle = std::min(min_angle, geometry::min_angle(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])));
-  }
+  for (int t = 0; t < m.triangle_slots(); ++t)
+    if (m.alive(t)) min_angle = std::min(min_angle, angles[t]);
   return m.triangle_count() ? min_angle * 180 / std::numbers::pi : 0;
 }
 
@@ -265,13 +313,12 @@ Quality measure(const TriMesh& m, bool mean_edge_length) {
   Quality q;
   q.vertices = m.vertex_count();
   q.triangles = m.triangle_count();
+  const std::vector<double> energies = triangle_energies(m);
   double max_e = 0, sum_e = 0;
   for (int t = 0; t < m.triangle_slots(); ++t) {
     if (!m.alive(t)) continue;
-    const auto& tri = m.triangle(t);
-    const double e = geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2]));
-    max_e = std::max(max_e, e);
-    sum_e += e;
+    max_e = std::max(max_e, energies[t]);
+    sum_e += energies[t];
   }
   q.max_amips = max_e;
   q.mean_amips = q.triangles ? sum_e / q.triangles : 0;
@@ -515,8 +562,7 @@ long split_long_edges(TriMesh& m, const mesh::Constraints& c, const Options& o, 
   // Each split adds two triangles (one on the box's side): refused before the mesh grows.
   base::check_triangles(std::size_t(m.triangle_count()) + 2 * edges.size(), o.max_triangles,
                         "to meet the edge length, " + std::to_string(edges.size()) + " edges would be split");
-  std::stable_sort(edges.begin(), edges.end(),
-                   [](const Edge& x, const Edge& y) { return x.length > y.length; });
+  sort_by_length(edges, true);
   long splits = 0;
   for (const Edge& e : edges) {
     const int v = mesh::split_edge(m, c, e.a, e.b, o.stop_max_amips);
@@ -598,12 +644,10 @@ void smooth_all(TriMesh& m, const mesh::Constraints& c, const Options& o, const 
 void smooth_bad_again(TriMesh& m, const mesh::Constraints& c, const Options& o, const mesh::Parts& parts,
                       Stats& s) {
   std::vector<char> bad(m.vertex_count(), 0);
-  for (int t = 0; t < m.triangle_slots(); ++t) {
-    if (!m.alive(t)) continue;
-    const auto& tri = m.triangle(t);
-    if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) > o.stop_max_amips)
-      for (int v : tri) bad[v] = 1;
-  }
+  const std::vector<double> energies = triangle_energies(m);
+  for (int t = 0; t < m.triangle_slots(); ++t)
+    if (m.alive(t) && energies[t] > o.stop_max_amips)
+      for (int v : m.triangle(t)) bad[v] = 1;
   const std::vector<int> vertices = vertices_where(m, [&](int v) {
     return bad[v] && !m.has_exact(v) && !(m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve);
   });
@@ -621,11 +665,12 @@ void smooth_bad_again(TriMesh& m, const mesh::Constraints& c, const Options& o, 
 // compaction that follows keeps the triangles' order, so these are measure's after it.
 std::pair<double, double> release_and_measure(TriMesh& m, const mesh::Constraints& c, const Options& o,
                                               Stats& s) {
+  const std::vector<double> energies = triangle_energies(m);  // releasing moves no vertex
   double max_e = 0, sum_e = 0;
   for (int t = 0; t < m.triangle_slots(); ++t) {
     if (!m.alive(t)) continue;
     const auto tri = m.triangle(t);
-    const double e = geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2]));
+    const double e = energies[t];
     max_e = std::max(max_e, e);
     sum_e += e;
     if (e <= o.stop_max_amips) continue;
