@@ -1,6 +1,7 @@
 #include "mesh/schedule.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace curvemesh::mesh {
 
@@ -49,6 +50,8 @@ void mark_inner(const TriMesh& m, Parts& parts) {
 }
 
 Parts spatial_parts(const TriMesh& m, int size) {
+  // The journal is one list: operations side by side cannot record into it.
+  if (m.journal_open()) throw std::logic_error("mesh::spatial_parts: the mesh's journal is open");
   Parts parts;
   parts.of.assign(m.vertex_count(), -1);
   std::vector<Placed> order;

@@ -16,7 +16,8 @@ namespace curvemesh::mesh {
 // The vertices with triangles cut into parts of at most `size` by halving at the median, across
 // the longer side of each part's box (ties by vertex number): compact parts, whose borders hold
 // few of their vertices. `of[v]`: v's part, -1 for a vertex without triangles; `inner[v]`: whether
-// v and every corner of its triangles are in v's part.
+// v and every corner of its triangles are in v's part. The mesh's journal must be closed (the
+// operations run through the parts cannot record into it).
 struct Parts {
   std::vector<int> of;
   std::vector<char> inner;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <stdexcept>
 
 #include "base/parallel.hpp"
 #include "grid_fixture.hpp"
@@ -37,6 +38,14 @@ TEST(SpatialParts, CoverTheMeshInPartsOfTheSizeAskedAndKnowTheirInnerVertices) {
   EXPECT_GE(parts.count, 25 * 25 / 64);
   // Compact parts: most vertices are inner.
   EXPECT_GT(std::count(parts.inner.begin(), parts.inner.end(), 1), m.vertex_count() / 3);
+}
+
+TEST(SpatialParts, RefuseAMeshWhoseJournalIsOpen) {
+  Fixture f = make_grid(8, 1);
+  f.mesh.open_journal();  // operations side by side cannot record into one journal
+  EXPECT_THROW(spatial_parts(f.mesh, 16), std::logic_error);
+  f.mesh.commit();
+  EXPECT_NO_THROW(spatial_parts(f.mesh, 16));
 }
 
 // Collapses of the short edges, swaps and smoothing, as the optimization runs them part by part.
