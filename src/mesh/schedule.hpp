@@ -29,7 +29,7 @@ Parts spatial_parts(const TriMesh& m, int size);
 void mark_inner(const TriMesh& m, Parts& parts);
 
 // Runs op(v) for `vertices` (ascending), an operation that moves v (and retags its own edges),
-// reading its star and its neighbours': the inner vertices of each part in ascending order in
+// reading its star (its neighbours' positions and tags): the inner vertices of each part, in order, in
 // the part's own task, the others afterwards, one after another in ascending order.
 template <class Op>
 void for_each_vertex_in_parts(const Parts& parts, const std::vector<int>& vertices, const Op& op) {
