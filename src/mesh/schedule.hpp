@@ -4,8 +4,8 @@
 // after another (as the wildmeshing toolkit schedules them). The parts depend on the mesh alone,
 // never on the number of threads, so the work done through them gives the same result, byte for
 // byte, on any number of threads.
-#include <algorithm>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "base/parallel.hpp"
@@ -27,23 +27,6 @@ Parts spatial_parts(const TriMesh& m, int size);
 // Sets `inner` again, after operations on the borders (done one after another) changed stars; the
 // parts stay as they are while the mesh gains no vertex.
 void mark_inner(const TriMesh& m, Parts& parts);
-
-// Runs op(v) for `vertices` (ascending), an operation that moves v (and retags its own edges),
-// reading its star (its neighbours' positions and tags): the inner vertices of each part, in order, in
-// the part's own task, the others afterwards, one after another in ascending order.
-template <class Op>
-void for_each_vertex_in_parts(const Parts& parts, const std::vector<int>& vertices, const Op& op) {
-  std::vector<std::vector<int>> items(parts.count);
-  std::vector<int> later;
-  for (int v : vertices) (parts.inner[v] ? items[parts.of[v]] : later).push_back(v);
-  base::for_each_part(
-      static_cast<std::size_t>(parts.count),
-      [&](std::size_t p) {
-        for (int v : items[p]) op(v);
-      },
-      1);
-  for (int v : later) op(v);
-}
 
 // Runs op(i) for the items 0 … n-1, each an operation on an edge (ends(i): its two ends) that
 // reads the stars of its ends and of their neighbours and rewrites triangles of the stars of its
@@ -70,6 +53,20 @@ void for_each_in_parts(const Parts& parts, std::size_t n, const Ends& ends, cons
       },
       1);
   for (std::size_t i : later) op(i);
+}
+
+// Runs op(v) for `vertices` (ascending), an operation that moves v (and retags its own edges),
+// reading its star (its neighbours' positions and tags): for_each_in_parts with v as both ends —
+// the inner vertices of each part, in order, in the part's own task, the others afterwards, one
+// after another in ascending order.
+template <class Op>
+void for_each_vertex_in_parts(const Parts& parts, const std::vector<int>& vertices, const Op& op) {
+  for_each_in_parts(
+      parts, vertices.size(),
+      [&](std::size_t i) {
+        return std::pair{vertices[i], vertices[i]};
+      },
+      [&](std::size_t i) { op(vertices[i]); });
 }
 
 }  // namespace curvemesh::mesh

@@ -125,6 +125,16 @@ std::vector<Edge> collapse_candidates(const TriMesh& m, const Below& below, cons
   return edges;
 }
 
+// Collapses e, a onto b first (as the kinds allow), unless a collapse of this pass touched one of
+// its ends; a collapse kept touches both.
+template <class Collapse>
+bool collapse_if_untouched(const Edge& e, std::vector<char>& touched, const Collapse& collapse) {
+  if (touched[e.a] || touched[e.b]) return false;
+  if (!(e.a_moves && collapse(e.a, e.b)) && !(e.b_moves && collapse(e.b, e.a))) return false;
+  touched[e.a] = touched[e.b] = 1;
+  return true;
+}
+
 // Collapses each of `edges` (collapse_candidates' order) whose ends no collapse of this pass has
 // touched: `collapse(from, to)` tries one direction, a's onto b first; `done(a, b)` hears of each
 // collapse kept. Returns how many were kept. An edge whose ends are untouched is still there: a
@@ -136,14 +146,11 @@ long collapse_each_once(const TriMesh& m, const std::vector<Edge>& edges, const 
                         const Done& done) {
   std::vector<char> touched(m.vertex_count(), 0);
   long collapsed = 0;
-  for (const Edge& e : edges) {
-    if (touched[e.a] || touched[e.b]) continue;
-    if ((e.a_moves && collapse(e.a, e.b)) || (e.b_moves && collapse(e.b, e.a))) {
+  for (const Edge& e : edges)
+    if (collapse_if_untouched(e, touched, collapse)) {
       ++collapsed;
-      touched[e.a] = touched[e.b] = 1;
       done(e.a, e.b);
     }
-  }
   return collapsed;
 }
 
@@ -606,13 +613,9 @@ long collapse_short_edges(TriMesh& m, const mesh::Constraints& c, const Options&
         return std::pair{edges[i].a, edges[i].b};
       },
       [&](std::size_t i) {
-        const Edge& e = edges[i];
-        if (touched[e.a] || touched[e.b]) return;
-        const auto collapse = [&](int from, int to) {
+        kept[i] = collapse_if_untouched(edges[i], touched, [&](int from, int to) {
           return mesh::collapse_edge(m, c, from, to, o.stop_max_amips, short_enough);
-        };
-        if ((e.a_moves && collapse(e.a, e.b)) || (e.b_moves && collapse(e.b, e.a)))
-          kept[i] = touched[e.a] = touched[e.b] = 1;
+        });
       });
   const long collapses = std::count(kept.begin(), kept.end(), 1);
   s.collapses += collapses;
@@ -728,10 +731,10 @@ class StopRule {
 
 // Halves the target size at the corners of the triangles above the stop energy, then grades.
 void refine_around_bad(const TriMesh& m, const Options& o, Sizing& sizing) {
+  const std::vector<double> energies = triangle_energies(m);
   for (int t = 0; t < m.triangle_slots(); ++t) {
-    const auto& tri = m.triangle(t);
-    if (geometry::amips(m.point(tri[0]), m.point(tri[1]), m.point(tri[2])) <= o.stop_max_amips) continue;
-    for (int v : tri) sizing.size[v] = std::max(o.min_edge_length, 0.5 * sizing.size[v]);
+    if (!m.alive(t) || energies[t] <= o.stop_max_amips) continue;
+    for (int v : m.triangle(t)) sizing.size[v] = std::max(o.min_edge_length, 0.5 * sizing.size[v]);
   }
   grade(m, sizing.size, o.gradation);
 }
