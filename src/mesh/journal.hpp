@@ -43,6 +43,7 @@ class Journal {
   void commit();
   void rollback();
   bool recording() const { return depth_ > 0; }
+  bool has_members() const { return !members_.empty(); }
   int depth() const { return depth_; }
 
  private:

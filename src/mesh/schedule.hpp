@@ -39,6 +39,14 @@ void mark_inner(const TriMesh& m, Parts& parts);
 // one sweep in item order.
 template <class Ends, class Op>
 void for_each_in_parts(const Parts& parts, std::size_t n, const Ends& ends, const Op& op) {
+  for_each_in_parts(parts, n, ends, op, [] {}, [] {});
+}
+
+// The same, with `before()` called before the parts' tasks start and `after()` when they have all
+// ended, before the operations on the borders.
+template <class Ends, class Op, class Before, class After>
+void for_each_in_parts(const Parts& parts, std::size_t n, const Ends& ends, const Op& op, const Before& before,
+                       const After& after) {
   std::vector<std::vector<std::size_t>> items(parts.count);
   std::vector<std::size_t> later;
   for (std::size_t i = 0; i < n; ++i) {
@@ -46,13 +54,24 @@ void for_each_in_parts(const Parts& parts, std::size_t n, const Ends& ends, cons
     const bool inside = parts.inner[a] && parts.inner[b] && parts.of[a] == parts.of[b];
     (inside ? items[parts.of[a]] : later).push_back(i);
   }
+  before();
   base::for_each_part(
       static_cast<std::size_t>(parts.count),
       [&](std::size_t p) {
         for (std::size_t i : items[p]) op(i);
       },
       1);
+  after();
   for (std::size_t i : later) op(i);
+}
+
+// for_each_in_parts for operations tried under the mesh's journal and judged afterwards: while
+// the parts run, each has a journal of its own (TriMesh::split_journal), which op(i) opens at an
+// end of its edge (TriMesh::open_journal(at)); on the borders afterwards, the mesh's.
+template <class Ends, class Op>
+void for_each_in_parts_journaled(TriMesh& m, const Parts& parts, std::size_t n, const Ends& ends, const Op& op) {
+  for_each_in_parts(
+      parts, n, ends, op, [&] { m.split_journal(parts.of, parts.count); }, [&] { m.join_journal(); });
 }
 
 // Runs op(v) for `vertices` (ascending), an operation that moves v (and retags its own edges),

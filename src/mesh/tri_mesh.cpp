@@ -7,7 +7,7 @@
 namespace curvemesh::mesh {
 
 int TriMesh::add_vertex(const Vec2& p, const VertexTag& tag) {
-  record({.kind = Change::Kind::add_vertex});
+  record(-1, {.kind = Change::Kind::add_vertex});
   points_.push_back(p);
   vertex_tags_.push_back(tag);
   exact_index_.push_back(-1);
@@ -19,7 +19,7 @@ int TriMesh::add_vertex(const Vec2& p, const VertexTag& tag) {
 
 int TriMesh::add_triangle(int a, int b, int c) {
   const int t = triangle_slots();
-  record({.kind = Change::Kind::add_triangle});
+  record(-1, {.kind = Change::Kind::add_triangle});
   triangles_.push_back({a, b, c});
   link(t);
   alive_triangles_.add(1);
@@ -39,27 +39,28 @@ void TriMesh::unlink(int t) {
 
 void TriMesh::remove_triangle(int t) {
   if (!alive(t)) return;
-  record({.kind = Change::Kind::remove_triangle, .index = t, .corners = triangles_[t]});
+  record(triangles_[t][0], {.kind = Change::Kind::remove_triangle, .index = t, .corners = triangles_[t]});
   unlink(t);
   triangles_[t] = {-1, -1, -1};
   alive_triangles_.add(-1);
 }
 
 void TriMesh::set_triangle(int t, const Triangle& corners) {
-  record({.kind = Change::Kind::set_triangle, .index = t, .corners = triangles_[t]});
+  record(triangles_[t][0], {.kind = Change::Kind::set_triangle, .index = t, .corners = triangles_[t]});
   unlink(t);
   triangles_[t] = corners;
   link(t);
 }
 
 void TriMesh::set_position(int v, const Vec2& p) {
-  record({.kind = Change::Kind::position, .index = v, .point = points_[v], .exact_index = exact_index_[v]});
+  record(v, {.kind = Change::Kind::position, .index = v, .point = points_[v], .exact_index = exact_index_[v]});
   points_[v] = p;
   exact_index_[v] = -1;
 }
 
 void TriMesh::set_exact_position(int v, const ExactPoint& p) {
-  record({.kind = Change::Kind::position, .index = v, .point = points_[v], .exact_index = exact_index_[v]});
+  if (lane_of_) throw std::logic_error("TriMesh::set_exact_position while the journal is split");
+  record(v, {.kind = Change::Kind::position, .index = v, .point = points_[v], .exact_index = exact_index_[v]});
   points_[v] = geometry::nearest_double(p);
   exact_index_[v] = static_cast<int>(exact_points_.size());
   exact_points_.push_back(p);
@@ -75,7 +76,7 @@ int TriMesh::exact_vertex_count() const {
 }
 
 void TriMesh::set_tag(int v, const VertexTag& tag) {
-  record({.kind = Change::Kind::tag, .index = v, .tag = vertex_tags_[v]});
+  record(v, {.kind = Change::Kind::tag, .index = v, .tag = vertex_tags_[v]});
   vertex_tags_[v] = tag;
 }
 
@@ -112,9 +113,9 @@ void TriMesh::erase_feature(int a, int b) {
 }
 
 void TriMesh::set_feature(int a, int b, const EdgeFeature& f) {
-  if (journal_open()) {
+  if (!log_at(std::min(a, b)).marks.empty()) {
     const EdgeFeature* old = feature(a, b);
-    record({.kind = Change::Kind::feature,
+    record(std::min(a, b), {.kind = Change::Kind::feature,
             .lo = std::min(a, b),
             .hi = std::max(a, b),
             .feature = old ? std::optional(*old) : std::nullopt});
@@ -123,31 +124,71 @@ void TriMesh::set_feature(int a, int b, const EdgeFeature& f) {
 }
 
 void TriMesh::clear_feature(int a, int b) {
-  if (journal_open()) {
+  if (!log_at(std::min(a, b)).marks.empty()) {
     const EdgeFeature* old = feature(a, b);
     if (!old) return;
-    record({.kind = Change::Kind::feature, .lo = std::min(a, b), .hi = std::max(a, b), .feature = *old});
+    record(std::min(a, b), {.kind = Change::Kind::feature, .lo = std::min(a, b), .hi = std::max(a, b), .feature = *old});
   }
   erase_feature(a, b);
 }
 
+void TriMesh::record(int at, Change change) {
+  if (lane_of_ && at < 0) throw std::logic_error("TriMesh: a vertex or triangle added while the journal is split");
+  Log& log = log_at(at);
+  if (!log.marks.empty()) log.changes.push_back(std::move(change));
+}
+
 void TriMesh::open_journal() {
-  marks_.push_back(journal_.size());
-  attributes_.open();
+  if (lane_of_) throw std::logic_error("TriMesh::open_journal with no vertex while the journal is split");
+  open_journal(0);
 }
 
 void TriMesh::commit() {
-  if (marks_.empty()) throw std::logic_error("TriMesh::commit with no open journal");
-  marks_.pop_back();
-  if (marks_.empty()) journal_.clear();
-  attributes_.commit();
+  if (lane_of_) throw std::logic_error("TriMesh::commit with no vertex while the journal is split");
+  commit(0);
 }
 
 void TriMesh::rollback() {
-  if (marks_.empty()) throw std::logic_error("TriMesh::rollback with no open journal");
-  for (; journal_.size() > marks_.back(); journal_.pop_back()) undo(journal_.back());
-  marks_.pop_back();
-  attributes_.rollback();
+  if (lane_of_) throw std::logic_error("TriMesh::rollback with no vertex while the journal is split");
+  rollback(0);
+}
+
+void TriMesh::open_journal(int at) {
+  Log& log = log_at(at);
+  log.marks.push_back(log.changes.size());
+  if (!lane_of_) attributes_.open();
+}
+
+void TriMesh::commit(int at) {
+  Log& log = log_at(at);
+  if (log.marks.empty()) throw std::logic_error("TriMesh::commit with no open journal");
+  log.marks.pop_back();
+  if (log.marks.empty()) log.changes.clear();
+  if (!lane_of_) attributes_.commit();
+}
+
+void TriMesh::rollback(int at) {
+  Log& log = log_at(at);
+  if (log.marks.empty()) throw std::logic_error("TriMesh::rollback with no open journal");
+  for (; log.changes.size() > log.marks.back(); log.changes.pop_back()) undo(log.changes.back());
+  log.marks.pop_back();
+  if (!lane_of_) attributes_.rollback();
+}
+
+void TriMesh::split_journal(const std::vector<int>& part_of, int parts) {
+  if (journal_open()) throw std::logic_error("TriMesh::split_journal with the journal open or split");
+  if (attributes_.has_members()) throw std::logic_error("TriMesh::split_journal with stores attached");
+  if (static_cast<int>(part_of.size()) < vertex_count())
+    throw std::logic_error("TriMesh::split_journal: a vertex without a part");
+  lanes_.assign(static_cast<std::size_t>(std::max(parts, 0)), Log{});
+  lane_of_ = &part_of;
+}
+
+void TriMesh::join_journal() {
+  for (const Log& log : lanes_)
+    if (!log.marks.empty()) throw std::logic_error("TriMesh::join_journal with a part's level open");
+  lanes_.clear();
+  lane_of_ = nullptr;
 }
 
 void TriMesh::undo(const Change& c) {

@@ -130,9 +130,26 @@ class TriMesh {
   void open_journal();
   void rollback();
   void commit();
-  bool journal_open() const { return !marks_.empty(); }
+  // A level is open, or the journal is split (below).
+  bool journal_open() const { return !log_.marks.empty() || lane_of_ != nullptr; }
   // Where a stage attaches what it keeps beside the mesh, to be taken back with it.
   Journal& journal() { return attributes_; }
+
+  // While parts of the mesh run operations side by side (mesh/schedule.hpp), each part has a
+  // journal of its own: split_journal gives one to each part (`part_of[v]`: v's part, from 0 to
+  // parts − 1), and an operation at vertex `at` opens, commits and takes back its levels with the
+  // calls taking `at`. A change is recorded in the journal of the part of the vertex it is at (a
+  // vertex moved or retagged, a corner of a triangle rewritten, the lower end of an edge retagged),
+  // which is the operation's own part when it changes the stars of the part's inner vertices only.
+  // No vertex or triangle may be added while the journal is split (their numbers would depend on
+  // the order of the parts), and the stores attached to journal() cannot follow: splitting refuses
+  // a mesh with any, or with a level open; joining, a part with a level open. Unsplit, the calls
+  // taking `at` are the calls above.
+  void split_journal(const std::vector<int>& part_of, int parts);
+  void join_journal();
+  void open_journal(int at);
+  void rollback(int at);
+  void commit(int at);
 
   // Checks the structural invariants: incidence lists match triangles, every triangle is
   // counter-clockwise (exact), every tagged edge exists. Returns a description of the first
@@ -189,14 +206,20 @@ class TriMesh {
     int lo = -1, hi = -1;  // feature: the edge
     std::optional<EdgeFeature> feature = std::nullopt;
   };
-  void record(Change change) {
-    if (!marks_.empty()) journal_.push_back(std::move(change));
-  }
+  // One journal: the changes, and per open level their count when it opened.
+  struct Log {
+    std::vector<Change> changes;
+    std::vector<std::size_t> marks;
+  };
+  Log& log_at(int at) { return lane_of_ ? lanes_[(*lane_of_)[at]] : log_; }
+  // `at`: the vertex the change is at (split_journal); -1 for an addition.
+  void record(int at, Change change);
   void link(int t);    // adds t to its corners' incidence lists
   void unlink(int t);  // removes t from its corners' incidence lists
   void undo(const Change& c);
-  std::vector<Change> journal_;
-  std::vector<std::size_t> marks_;  // per open level, the journal's length when it opened
+  Log log_;
+  std::vector<Log> lanes_;                 // per part, while the journal is split
+  const std::vector<int>* lane_of_ = nullptr;  // the parts of the vertices, while split
   Journal attributes_;
 };
 

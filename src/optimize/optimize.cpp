@@ -3,6 +3,7 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -135,50 +136,6 @@ bool collapse_if_untouched(const Edge& e, std::vector<char>& touched, const Coll
   return true;
 }
 
-// Collapses each of `edges` (collapse_candidates' order) whose ends no collapse of this pass has
-// touched: `collapse(from, to)` tries one direction, a's onto b first; `done(a, b)` hears of each
-// collapse kept. Returns how many were kept. An edge whose ends are untouched is still there: a
-// collapse rewrites only the triangles of the vertex that goes (those it keeps get the other end
-// instead), so it removes or adds edges only at its two ends. (collapse_edge refuses a pair that is
-// no edge anyway.)
-template <class Collapse, class Done>
-long collapse_each_once(const TriMesh& m, const std::vector<Edge>& edges, const Collapse& collapse,
-                        const Done& done) {
-  std::vector<char> touched(m.vertex_count(), 0);
-  long collapsed = 0;
-  for (const Edge& e : edges)
-    if (collapse_if_untouched(e, touched, collapse)) {
-      ++collapsed;
-      done(e.a, e.b);
-    }
-  return collapsed;
-}
-
-// One swap pass: every inner edge once, in the order of all_edges as the pass starts (hull edges
-// never swap), each with the triangle it came from as the hint. The corners are copied first: the
-// swaps rewrite triangles as the pass goes.
-// `wanted(a, b)` may leave out edges whose swap is known to be refused; `swap(a, b, t)` swaps
-// (mesh::swap_edge with t as the hint, or a stricter test of it); `swapped(a, b)` hears of each
-// swap of (a, b), after it.
-template <class Wanted, class Swap, class Swapped>
-int swap_pass(TriMesh& m, const Wanted& wanted, const Swap& swap, const Swapped& swapped) {
-  std::vector<mesh::Triangle> corners(m.triangle_slots());
-  for (int t = 0; t < m.triangle_slots(); ++t) corners[t] = m.triangle(t);
-  int swaps = 0;
-  for (int t = 0; t < static_cast<int>(corners.size()); ++t) {
-    const auto& tri = corners[t];
-    if (tri[0] < 0) continue;
-    for (int i = 0; i < 3; ++i) {
-      const int a = tri[i], b = tri[(i + 1) % 3];
-      if (a < b && wanted(a, b) && swap(a, b, t)) {
-        ++swaps;
-        swapped(a, b);
-      }
-    }
-  }
-  return swaps;
-}
-
 // How many vertices a part of the mesh has at most when local operations run part by part
 // (mesh::spatial_parts): a count of the mesh's own, so that the parts, and the result, do not
 // depend on the number of threads. Parts of this size leave a tenth to a quarter of the
@@ -186,25 +143,34 @@ int swap_pass(TriMesh& m, const Wanted& wanted, const Swap& swap, const Swapped&
 // after the parts.
 constexpr int kPartSize = 2048;
 
-int swap_pass(TriMesh& m) {
-  return swap_pass(
-      m, [](int, int) { return true; }, [&](int a, int b, int t) { return mesh::swap_edge(m, a, b, 0, t); },
-      [](int, int) {});
-}
-
-// The iterations' swap pass, part by part (mesh::for_each_in_parts): a swap of (a, b) reads and
-// rewrites its two triangles and reads the stars of their corners, all in the stars of a and b.
-int swap_pass_in_parts(TriMesh& m, const mesh::Parts& parts) {
-  struct Candidate {
-    int a, b, t;
-  };
-  std::vector<Candidate> candidates;
+// The edges a swap pass looks at: every inner edge once (as its lower end sees it first, so hull
+// edges, which never swap, come only the wrong way round and are left out), in triangle order, each
+// with the triangle it came from as swap_edge's hint.
+struct SwapCandidate {
+  int a, b, t;
+};
+std::vector<SwapCandidate> swap_candidates(const TriMesh& m) {
+  std::vector<SwapCandidate> candidates;
   for (int t = 0; t < m.triangle_slots(); ++t) {
     const auto tri = m.triangle(t);
     if (tri[0] < 0) continue;
     for (int i = 0; i < 3; ++i)
       if (tri[i] < tri[(i + 1) % 3]) candidates.push_back({tri[i], tri[(i + 1) % 3], t});
   }
+  return candidates;
+}
+
+// One swap pass over the whole mesh, one swap after another.
+int swap_pass(TriMesh& m) {
+  int swaps = 0;
+  for (const SwapCandidate& e : swap_candidates(m)) swaps += mesh::swap_edge(m, e.a, e.b, 0, e.t);
+  return swaps;
+}
+
+// The iterations' swap pass, part by part (mesh::for_each_in_parts): a swap of (a, b) reads and
+// rewrites its two triangles and reads the stars of their corners, all in the stars of a and b.
+int swap_pass_in_parts(TriMesh& m, const mesh::Parts& parts) {
+  const std::vector<SwapCandidate> candidates = swap_candidates(m);
   std::vector<char> swapped(candidates.size(), 0);
   mesh::for_each_in_parts(
       parts, candidates.size(),
@@ -360,18 +326,20 @@ double curved_energy(const TriMesh& m, const mesh::Constraints& c, int t) {
 
 namespace {
 
-// When each vertex's star last changed, on a logical clock, so that the coarsening tries again
+// When each vertex's star last changed, counted in passes, so that the coarsening tries again
 // only what changed: an operation's outcome depends on the stars it reads alone, so one tried on
 // stars that have not changed since is refused again. `changed[v]`: one of v's triangles came or
 // went, or a corner of one moved (a rollback counts: it may reorder the incidence lists, which the
-// energies are summed in); `reshaped[v]`: one of its triangles came or went.
+// energies are summed in); `reshaped[v]`: one of its triangles came or went. A change is stamped
+// with the pass it happened in, and stamps are only ever compared with when a pass began: parts
+// of the mesh stamp their own vertices side by side, and the stamps do not depend on the order.
 struct StarClock {
   long now = 1;
   std::vector<long> changed, reshaped;
   explicit StarClock(int vertices) : changed(vertices, 0), reshaped(vertices, 0) {}
 
-  long tick() { return ++now; }
-  // v's star and its neighbours' stars changed now.
+  long begin_pass() { return ++now; }
+  // v's star and its neighbours' stars changed in this pass.
   void star_changed(const TriMesh& m, int v, bool topology) {
     changed[v] = now;
     if (topology) reshaped[v] = now;
@@ -404,18 +372,17 @@ struct StarClock {
 template <class Operation, class After, class Before>
 bool curved_test(TriMesh& m, const Options& o, StarClock& clock, int a, int b, const Operation& operation,
                  const After& worst_after, const Before& worst_before) {
-  m.open_journal();
+  m.open_journal(a);
   if (!operation()) {
-    m.commit();
+    m.commit(a);
     return false;
   }
   const double after = worst_after();
   if (after <= o.curved_stop_amips) {
-    m.commit();
+    m.commit(a);
     return true;
   }
-  m.rollback();
-  clock.tick();
+  m.rollback(a);
   clock.star_changed(m, a, true);
   clock.star_changed(m, b, true);
   return after <= worst_before() && operation();
@@ -431,9 +398,11 @@ double star_curved(const TriMesh& m, const mesh::Constraints& c, int v) {
 // One round's collapses: every edge shorter than the target with an end whose star changed since
 // the last round began, shortest first, each vertex touched once; every new triangle at most
 // max(stop energy, the worst it replaces), as in the loop, and no new edge longer than 5/3 of the
-// target; in the curved pipeline, curved_test too. Returns the number kept.
-long coarsening_collapses(TriMesh& m, const mesh::Constraints& c, const Options& o, StarClock& clock,
-                          long since) {
+// target; in the curved pipeline, curved_test too. Part by part, each part under a journal of its
+// own (mesh::for_each_in_parts_journaled): a collapse reads the stars of its two ends and rewrites
+// that of the one that goes, and stamps the stars of both. Returns the number kept.
+long coarsening_collapses(TriMesh& m, const mesh::Constraints& c, const Options& o, const mesh::Parts& parts,
+                          StarClock& clock, long since) {
   const double target = o.edge_length;
   const mesh::CollapseTest short_enough = [&](int from, int to) {
     return mesh::collapse_keeps_edges_short(m, from, to,
@@ -448,15 +417,23 @@ long coarsening_collapses(TriMesh& m, const mesh::Constraints& c, const Options&
         m, o, clock, from, to, operation, [&] { return star_curved(m, c, to); },
         [&] { return std::max(star_curved(m, c, from), star_curved(m, c, to)); });
   };
-  // A collapse reads the stars of both ends.
   const std::vector<Edge> edges = collapse_candidates(
       m, [&](int, int) { return target; },
       [&](int a, int b) { return clock.changed[a] >= since || clock.changed[b] >= since; });
-  return collapse_each_once(m, edges, collapse, [&](int a, int b) {
-    clock.tick();
-    clock.star_changed(m, a, true);  // the one that stayed has the merged star; the other has none
-    clock.star_changed(m, b, true);
-  });
+  std::vector<char> touched(m.vertex_count(), 0), kept(edges.size(), 0);
+  mesh::for_each_in_parts_journaled(
+      m, parts, edges.size(),
+      [&](std::size_t i) {
+        return std::pair{edges[i].a, edges[i].b};
+      },
+      [&](std::size_t i) {
+        const Edge& e = edges[i];
+        if (!collapse_if_untouched(e, touched, collapse)) return;
+        kept[i] = 1;
+        clock.star_changed(m, e.a, true);  // the one that stayed has the merged star; the other has none
+        clock.star_changed(m, e.b, true);
+      });
+  return std::count(kept.begin(), kept.end(), 1);
 }
 
 // One round's swaps where they lower the larger energy of the two triangles; in the curved
@@ -464,12 +441,17 @@ long coarsening_collapses(TriMesh& m, const mesh::Constraints& c, const Options&
 // curved, or no worse than the two it replaced). A swap of (a, b) reads its two triangles and the
 // stars of the two opposite corners (is the other diagonal an edge already?): it is tried again
 // when a corner of either triangle has a changed star, that is when a and b are both corners of
-// such triangles (`near`). `since` is 0 on the first round: every edge is tried.
-int coarsening_swaps(TriMesh& m, const mesh::Constraints& c, const Options& o, StarClock& clock, long since) {
+// such triangles (`near`). `since` is 0 on the first round: every edge is tried. Part by part,
+// each part under a journal of its own.
+int coarsening_swaps(TriMesh& m, const mesh::Constraints& c, const Options& o, const mesh::Parts& parts,
+                     StarClock& clock, long since) {
   std::vector<char> near(m.vertex_count(), since == 0);
+  // A swap in a part marks the corners of the stars of its quad's corners, some of them on the
+  // part's border and so in other parts' stars too: those are marked side by side (all with 1),
+  // and read only by the operations on the borders, afterwards.
   const auto mark_near = [&](int v) {
     for (int t : m.triangles_of(v))
-      for (int w : m.triangle(t)) near[w] = 1;
+      for (int w : m.triangle(t)) std::atomic_ref<char>(near[w]).store(1, std::memory_order_relaxed);
   };
   if (since > 0)
     for (int v = 0; v < m.vertex_count(); ++v)
@@ -486,34 +468,42 @@ int coarsening_swaps(TriMesh& m, const mesh::Constraints& c, const Options& o, S
     };
     return curved_test(m, o, clock, a, b, operation, worst_in_slots, worst_in_slots);
   };
-  return swap_pass(
-      m, [&](int a, int b) { return near[a] && near[b]; }, swap,
-      [&](int a, int b) {  // the quad's corners are among the corners of a's and b's triangles now
-        clock.tick();
+  const std::vector<SwapCandidate> candidates = swap_candidates(m);
+  std::vector<char> swapped(candidates.size(), 0);
+  mesh::for_each_in_parts_journaled(
+      m, parts, candidates.size(),
+      [&](std::size_t i) {
+        return std::pair{candidates[i].a, candidates[i].b};
+      },
+      [&](std::size_t i) {
+        const auto [a, b, t] = candidates[i];
+        if (!near[a] || !near[b] || !swap(a, b, t)) return;
+        swapped[i] = 1;
+        // The quad's corners are among the corners of a's and b's triangles now.
         for (int end : {a, b})
-          for (int t : m.triangles_of(end))
-            for (int v : m.triangle(t)) {
+          for (int tri : m.triangles_of(end))
+            for (int v : m.triangle(tri)) {
               clock.changed[v] = clock.reshaped[v] = clock.now;
               mark_near(v);
             }
       });
+  return static_cast<int>(std::count(swapped.begin(), swapped.end(), 1));
 }
 
 // Smoothing where this round's collapses and swaps changed a star (the loop left the rest
 // smoothed), part by part; returns the number of moves.
-int smooth_reshaped(TriMesh& m, const mesh::Constraints& c, StarClock& clock, long round_start) {
+int smooth_reshaped(TriMesh& m, const mesh::Constraints& c, const mesh::Parts& parts, StarClock& clock,
+                    long round_start) {
   const std::vector<int> vertices = vertices_where(m, [&](int v) {
     return clock.reshaped[v] >= round_start && !m.has_exact(v) &&
            !(m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve);
   });
   std::vector<char> moved(m.vertex_count(), 0);
-  mesh::for_each_vertex_in_parts(mesh::spatial_parts(m, kPartSize), vertices,
-                                 [&](int v) { moved[v] = mesh::smooth_vertex(m, c, v); });
+  mesh::for_each_vertex_in_parts(parts, vertices, [&](int v) { moved[v] = mesh::smooth_vertex(m, c, v); });
   int moves = 0;
   for (int v : vertices)
     if (moved[v]) {
       ++moves;
-      clock.tick();
       clock.star_changed(m, v, false);
     }
   return moves;
@@ -536,14 +526,18 @@ void coarsen(TriMesh& m, const mesh::Constraints& c, const Options& o, Stats& s)
   StarClock clock(m.vertex_count());
   long collapse_start = 0, swap_start = 0;  // when each pass last began
   for (int round = 0; round < o.coarsening_rounds; ++round) {
-    const long round_start = clock.tick();
-    const long collapsed = coarsening_collapses(m, c, o, clock, collapse_start);
+    const long round_start = clock.begin_pass();
+    // The collapses, swaps and smoothing part by part: the parts stay while no vertex is added.
+    mesh::Parts parts = mesh::spatial_parts(m, kPartSize);
+    const long collapsed = coarsening_collapses(m, c, o, parts, clock, collapse_start);
     collapse_start = round_start;
     s.coarsening_collapses += collapsed;
     const long since_swap = swap_start;
-    swap_start = clock.tick();
-    s.swaps += coarsening_swaps(m, c, o, clock, since_swap);
-    s.smooths += smooth_reshaped(m, c, clock, round_start);
+    swap_start = clock.begin_pass();
+    mesh::mark_inner(m, parts);
+    s.swaps += coarsening_swaps(m, c, o, parts, clock, since_swap);
+    mesh::mark_inner(m, parts);
+    s.smooths += smooth_reshaped(m, c, parts, clock, round_start);
     const std::vector<int> renumbered = m.compact();
     clock.renumber(renumbered, m.vertex_count());
     ++s.coarsening_rounds;
@@ -605,7 +599,7 @@ long collapse_short_edges(TriMesh& m, const mesh::Constraints& c, const Options&
     return mesh::collapse_keeps_edges_short(m, from, to, edge_target);
   };
   // Part by part (mesh::for_each_in_parts): a collapse reads the stars of its two ends and
-  // rewrites that of the one that goes; each vertex is touched once, as in collapse_each_once.
+  // rewrites that of the one that goes; each vertex is touched once.
   std::vector<char> touched(m.vertex_count(), 0), kept(edges.size(), 0);
   mesh::for_each_in_parts(
       parts, edges.size(),
