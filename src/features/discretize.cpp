@@ -2,8 +2,11 @@
 // more curve sections (split at inflections and where the turning would reach 180°), each
 // sampled into pieces short, flat and straight enough to become one mesh edge.
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
+#include "base/parallel.hpp"
 #include "features/pieces.hpp"
 #include "geometry/bezier_analysis.hpp"
 #include "geometry/vec2.hpp"
@@ -48,46 +51,45 @@ double sampled_curvature(const CubicBezier& c) {
   return worst;
 }
 
-class Discretizer {
- public:
-  Discretizer(const svg::FeatureSoup& soup, const Lengths& lengths) : soup_(soup), len_(lengths) {}
+// One input curve cut as §4 cuts it, on its own: its sections (parameter intervals) and their
+// pieces, whose `section` and `along` are given when the curves are joined, in order.
+struct CurveCut {
+  enum class Kind { degenerate, straight, curved } kind = Kind::curved;
+  Vec2 centre = Vec2::Zero();                       // degenerate: the point it becomes
+  Vec2 line_a = Vec2::Zero(), line_b = Vec2::Zero();  // straight: its chord
+  std::vector<std::array<double, 2>> sections;      // curved: the sections' intervals
+  std::vector<int> piece_counts;                    // per section (one section when straight)
+  std::vector<Piece> pieces;
+};
 
-  Discretized run() {
-    for (int i = 0; i < static_cast<int>(soup_.curves.size()); ++i) add_curve(i);
-    for (const svg::SoupPoint& p : soup_.points) out_.points.push_back({p.p, p.source});
-    return std::move(out_);
+class Cutter {
+ public:
+  explicit Cutter(const Lengths& lengths) : len_(lengths) {}
+
+  CurveCut cut(const CubicBezier& c) const {
+    CurveCut out;
+    if (geometry::is_degenerate(c, len_.eps_m)) {
+      out.kind = CurveCut::Kind::degenerate;
+      out.centre = (c.p[0] + c.p[1] + c.p[2] + c.p[3]) / 4.0;
+      return out;
+    }
+    if (geometry::is_straight(c, len_.eps_m)) {
+      cut_straight(c, out);
+      return out;
+    }
+    const std::vector<double> kept = section_ends(c);
+    for (std::size_t k = 0; k + 1 < kept.size(); ++k) {
+      const std::size_t first = out.pieces.size();
+      refine(c, kept[k], kept[k + 1], c.eval(kept[k]), c.eval(kept[k + 1]), 0, out.pieces);
+      out.sections.push_back({kept[k], kept[k + 1]});
+      out.piece_counts.push_back(static_cast<int>(out.pieces.size() - first));
+    }
+    return out;
   }
 
  private:
-  // The chain input curve `index` lies on: the previous curve's when both are pieces of one arc.
-  void enter_chain(int index) {
-    const svg::SoupCurve& curve = soup_.curves[index];
-    const bool continues = index > 0 && curve.arc >= 0 && soup_.curves[index - 1].arc == curve.arc;
-    if (!continues) {
-      out_.chains.push_back({});
-      chain_first_ = index;
-      curve_along_ = 0;
-    }
-    // Closed once its last piece ends where its first starts: an arc's pieces only (a single
-    // input curve that closes on itself keeps the rule of every input curve).
-    out_.chains.back().closed = continues && curve.bezier.p[3] == soup_.curves[chain_first_].bezier.p[0];
-  }
-
-  void add_curve(int index) {
-    const CubicBezier& c = soup_.curves[index].bezier;
-    enter_chain(index);
-    if (geometry::is_degenerate(c, len_.eps_m)) {
-      const Vec2 centre = (c.p[0] + c.p[1] + c.p[2] + c.p[3]) / 4.0;
-      out_.points.push_back({centre, soup_.curves[index].source});
-      ++out_.degenerate_curves;
-      return;
-    }
-    if (geometry::is_straight(c, len_.eps_m)) {
-      ++out_.straight_curves;
-      add_straight(index, c);
-      return;
-    }
-    // Split at inflections (eq. 1), then each constant-sign part where it would turn ≥ 180°.
+  // Split at inflections (eq. 1), then each constant-sign part where it would turn ≥ 180°.
+  std::vector<double> section_ends(const CubicBezier& c) const {
     std::vector<double> cuts{0.0};
     std::vector<double> inflections = geometry::inflection_parameters(c);
     inflections.push_back(1.0);
@@ -111,10 +113,11 @@ class Discretizer {
       }
     }
     if (kept.size() == 1) kept.push_back(1.0);
-    for (std::size_t k = 0; k + 1 < kept.size(); ++k) add_section(index, c, kept[k], kept[k + 1]);
+    return kept;
   }
 
-  void add_straight(int index, const CubicBezier& c) {
+  void cut_straight(const CubicBezier& c, CurveCut& out) const {
+    out.kind = CurveCut::Kind::straight;
     // §4: replaced by its chord; when the ends coincide, by the two farthest control points.
     Vec2 a = c.p[0], b = c.p[3];
     if ((b - a).norm() <= len_.eps_m) {
@@ -123,35 +126,125 @@ class Discretizer {
         for (int j = i + 1; j < 4; ++j)
           if ((c.p[i] - c.p[j]).norm() > best) best = (c.p[i] - c.p[j]).norm(), a = c.p[i], b = c.p[j];
     }
-    CurveSection s;
-    s.curve = index;
-    s.straight = true;
-    s.line_a = a;
-    s.line_b = b;
-    s.first_piece = static_cast<int>(out_.pieces.size());
+    out.line_a = a;
+    out.line_b = b;
     const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / len_.edge - 1e-12)));
     for (int k = 0; k < n; ++k) {
       Piece p;
-      p.section = static_cast<int>(out_.sections.size());
       p.t0 = double(k) / n;
       p.t1 = double(k + 1) / n;
       p.a = k == 0 ? a : a + p.t0 * (b - a);
       p.b = k + 1 == n ? b : a + p.t1 * (b - a);
       p.leave_a = b - a, p.leave_b = a - b;
       p.unfit = (p.b - p.a).norm() < len_.min_edge;  // shorter than the minimal edge length
-      out_.pieces.push_back(p);
+      out.pieces.push_back(p);
     }
-    finish_section(s);
+    out.piece_counts.push_back(n);
   }
 
-  void add_section(int index, const CubicBezier& c, double t0, double t1) {
-    CurveSection s;
-    s.curve = index;
-    s.t0 = t0;
-    s.t1 = t1;
-    s.first_piece = static_cast<int>(out_.pieces.size());
-    refine(c, t0, t1, c.eval(t0), c.eval(t1), 0);
-    finish_section(s);
+  // §4 "Curve resampling": halve until the piece is at most l long, within μ of its chord and
+  // turns at most α (what Theorem 3.4 needs to bend the edge later). Pieces that cannot get
+  // there (cusps, curvature above α / l_m) are kept, but marked for the secondary set.
+  void refine(const CubicBezier& c, double t0, double t1, const Vec2& a, const Vec2& b, int depth,
+              std::vector<Piece>& out) const {
+    const CubicBezier sub = c.subcurve(t0, t1);
+    const double chord = (b - a).norm();
+    const bool short_enough = chord <= len_.edge;
+    const bool flat_enough = chord_deviation(sub) <= len_.mu;
+    const bool straight_enough = geometry::turning_angle(sub) <= len_.alpha_rad;
+    if (short_enough && flat_enough && straight_enough) return emit(sub, t0, t1, a, b, false, out);
+    // Too small to split further (the control polygon bounds the arc length, unlike the chord of
+    // a loop): this part cannot be a primary edge.
+    const double polygon = (sub.p[1] - sub.p[0]).norm() + (sub.p[2] - sub.p[1]).norm() + (sub.p[3] - sub.p[2]).norm();
+    if (depth >= kMaxDepth || polygon < 0.5 * len_.min_edge) return emit(sub, t0, t1, a, b, true, out);
+    const double tm = 0.5 * (t0 + t1);
+    const Vec2 m = c.eval(tm);
+    refine(c, t0, tm, a, m, depth + 1, out);
+    refine(c, tm, t1, m, b, depth + 1, out);
+  }
+
+  void emit(const CubicBezier& sub, double t0, double t1, const Vec2& a, const Vec2& b, bool unresolved,
+            std::vector<Piece>& out) const {
+    Piece p;
+    p.t0 = t0;
+    p.t1 = t1;
+    p.a = a;
+    p.b = b;
+    // The end tangents (their limits from inside where the derivative vanishes).
+    p.leave_a = geometry::unit_tangent(sub, 0.0);
+    p.leave_b = -geometry::unit_tangent(sub, 1.0);
+    // A primary edge is at least l_m long (the minimal edge length of the mesh) and turns at most
+    // α, so a shorter piece — a whole curve shorter than l_m — or one where the curvature exceeds
+    // α / l_m cannot be followed by primary edges (§3.1, bounded curvature).
+    p.unfit = unresolved || (b - a).norm() < len_.min_edge || sampled_curvature(sub) > len_.alpha_rad / len_.min_edge;
+    out.push_back(p);
+  }
+
+  const Lengths& len_;
+};
+
+// The curves are cut side by side, in blocks, and joined in order: chains, sections and the
+// pieces' lengths along their chains.
+class Discretizer {
+ public:
+  Discretizer(const svg::FeatureSoup& soup, const Lengths& lengths) : soup_(soup), len_(lengths) {}
+
+  Discretized run() {
+    const Cutter cutter(len_);
+    constexpr std::size_t kBlock = 4096;
+    const std::size_t n = soup_.curves.size();
+    std::vector<CurveCut> cuts;
+    for (std::size_t first = 0; first < n; first += kBlock) {
+      cuts.assign(std::min(kBlock, n - first), CurveCut{});
+      base::for_each_part(cuts.size(), [&](std::size_t i) { cuts[i] = cutter.cut(soup_.curves[first + i].bezier); }, 16);
+      for (std::size_t i = 0; i < cuts.size(); ++i) join(static_cast<int>(first + i), std::move(cuts[i]));
+    }
+    for (const svg::SoupPoint& p : soup_.points) out_.points.push_back({p.p, p.source});
+    return std::move(out_);
+  }
+
+ private:
+  // The chain input curve `index` lies on: the previous curve's when both are pieces of one arc.
+  void enter_chain(int index) {
+    const svg::SoupCurve& curve = soup_.curves[index];
+    const bool continues = index > 0 && curve.arc >= 0 && soup_.curves[index - 1].arc == curve.arc;
+    if (!continues) {
+      out_.chains.push_back({});
+      chain_first_ = index;
+      curve_along_ = 0;
+    }
+    // Closed once its last piece ends where its first starts: an arc's pieces only (a single
+    // input curve that closes on itself keeps the rule of every input curve).
+    out_.chains.back().closed = continues && curve.bezier.p[3] == soup_.curves[chain_first_].bezier.p[0];
+  }
+
+  void join(int index, CurveCut cut) {
+    enter_chain(index);
+    if (cut.kind == CurveCut::Kind::degenerate) {
+      out_.points.push_back({cut.centre, soup_.curves[index].source});
+      ++out_.degenerate_curves;
+      return;
+    }
+    out_.straight_curves += cut.kind == CurveCut::Kind::straight;
+    std::size_t next = 0;
+    for (std::size_t k = 0; k < cut.piece_counts.size(); ++k) {
+      CurveSection s;
+      s.curve = index;
+      if (cut.kind == CurveCut::Kind::straight) {
+        s.straight = true;
+        s.line_a = cut.line_a;
+        s.line_b = cut.line_b;
+      } else {
+        s.t0 = cut.sections[k][0];
+        s.t1 = cut.sections[k][1];
+      }
+      s.first_piece = static_cast<int>(out_.pieces.size());
+      for (int i = 0; i < cut.piece_counts[k]; ++i, ++next) {
+        cut.pieces[next].section = static_cast<int>(out_.sections.size());
+        out_.pieces.push_back(cut.pieces[next]);
+      }
+      finish_section(s);
+    }
   }
 
   void finish_section(CurveSection& s) {
@@ -164,44 +257,6 @@ class Discretizer {
     curve_along_ += s.length;
     out_.chains.back().length += s.length;
     out_.sections.push_back(s);
-  }
-
-  // §4 "Curve resampling": halve until the piece is at most l long, within μ of its chord and
-  // turns at most α (what Theorem 3.4 needs to bend the edge later). Pieces that cannot get
-  // there (cusps, curvature above α / l_m) are kept, but marked for the secondary set.
-  void refine(const CubicBezier& c, double t0, double t1, const Vec2& a, const Vec2& b, int depth) {
-    const CubicBezier sub = c.subcurve(t0, t1);
-    const double chord = (b - a).norm();
-    const bool short_enough = chord <= len_.edge;
-    const bool flat_enough = chord_deviation(sub) <= len_.mu;
-    const bool straight_enough = geometry::turning_angle(sub) <= len_.alpha_rad;
-    if (short_enough && flat_enough && straight_enough) return emit(sub, t0, t1, a, b, false);
-    // Too small to split further (the control polygon bounds the arc length, unlike the chord of
-    // a loop): this part cannot be a primary edge.
-    const double polygon = (sub.p[1] - sub.p[0]).norm() + (sub.p[2] - sub.p[1]).norm() + (sub.p[3] - sub.p[2]).norm();
-    if (depth >= kMaxDepth || polygon < 0.5 * len_.min_edge) return emit(sub, t0, t1, a, b, true);
-    const double tm = 0.5 * (t0 + t1);
-    const Vec2 m = c.eval(tm);
-    refine(c, t0, tm, a, m, depth + 1);
-    refine(c, tm, t1, m, b, depth + 1);
-  }
-
-  void emit(const CubicBezier& sub, double t0, double t1, const Vec2& a, const Vec2& b,
-            bool unresolved) {
-    Piece p;
-    p.section = static_cast<int>(out_.sections.size());
-    p.t0 = t0;
-    p.t1 = t1;
-    p.a = a;
-    p.b = b;
-    // The end tangents (their limits from inside where the derivative vanishes).
-    p.leave_a = geometry::unit_tangent(sub, 0.0);
-    p.leave_b = -geometry::unit_tangent(sub, 1.0);
-    // A primary edge is at least l_m long (the minimal edge length of the mesh) and turns at most
-    // α, so a shorter piece — a whole curve shorter than l_m — or one where the curvature exceeds
-    // α / l_m cannot be followed by primary edges (§3.1, bounded curvature).
-    p.unfit = unresolved || (b - a).norm() < len_.min_edge || sampled_curvature(sub) > len_.alpha_rad / len_.min_edge;
-    out_.pieces.push_back(p);
   }
 
   const svg::FeatureSoup& soup_;

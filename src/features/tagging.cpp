@@ -21,8 +21,11 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <utility>
+#include <vector>
 
 #include "base/limits.hpp"
+#include "base/parallel.hpp"
 #include "features/pieces.hpp"
 #include "geometry/vec2.hpp"
 
@@ -123,16 +126,31 @@ void tag_primary_secondary(Discretized& d, const Lengths& len) {
   for (int i = 0; i < n; ++i)
     if (!d.pieces[i].unfit && len.features) boxes.push_back(box_of(d.pieces[i].a, d.pieces[i].b, 0.5 * len.mu, i));
 
+  // The pairs whose boxes meet, gathered in blocks, and whether each is in conflict decided side
+  // by side (the greedy below asks only whether a conflicting piece is primary, so the order of
+  // the lists does not matter).
   std::vector<std::vector<int>> conflicts(n);
+  std::vector<std::pair<int, int>> block;
+  std::vector<char> conflicting;
+  const auto decide = [&] {
+    conflicting.assign(block.size(), 0);
+    base::for_each_part(
+        block.size(),
+        [&](std::size_t k) { conflicting[k] = in_conflict(d, block[k].first, block[k].second, len); }, 1024);
+    for (std::size_t k = 0; k < block.size(); ++k)
+      if (conflicting[k]) {
+        conflicts[block[k].first].push_back(block[k].second);
+        conflicts[block[k].second].push_back(block[k].first);
+      }
+    block.clear();
+  };
   std::size_t pairs = 0;
   CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
     base::check_pairs(++pairs, len.max_triangles, 8, "pieces within mu of each other");
-    const int i = x.info(), j = y.info();
-    if (in_conflict(d, i, j, len)) {
-      conflicts[i].push_back(j);
-      conflicts[j].push_back(i);
-    }
+    block.emplace_back(x.info(), y.info());
+    if (block.size() == std::size_t{1} << 16) decide();
   });
+  decide();
 
   // Greedy: long sections first, pieces in order along each section.
   std::vector<int> order(d.sections.size());
