@@ -37,6 +37,7 @@
 #include <CGAL/property_map.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -47,6 +48,7 @@
 #include <unordered_map>
 
 #include "base/limits.hpp"
+#include "base/parallel.hpp"
 #include "triangulate/arrangement.hpp"
 
 namespace curvemesh::triangulate::detail {
@@ -215,24 +217,67 @@ class Builder {
     });
     // The box intersection's order is not the same from run to run: sort for determinism.
     std::sort(pairs.begin(), pairs.end());
-    for (const auto& [s, q] : pairs) {
-      if (s < 0) continue;  // two loose points: distinct, so not one vertex
-      if (q < 0) {
-        point_on_segment(s, -1 - q);
-      } else {
-        pair(s, q);
-      }
+    // Each pair is examined on its own, side by side, in blocks (what a block finds is held until
+    // it is added); what they find is added in the sorted order, one after another.
+    constexpr std::size_t kBlock = 1 << 16;
+    std::vector<Found> found;
+    for (std::size_t first = 0; first < pairs.size(); first += kBlock) {
+      const std::size_t n = std::min(kBlock, pairs.size() - first);
+      found.assign(n, Found{});
+      base::for_each_part(n, [&](std::size_t i) { found[i] = examine(pairs[first + i]); }, 256);
+      for (std::size_t i = 0; i < n; ++i) add(pairs[first + i], found[i]);
     }
   }
 
-  // Adds the event of point p on segment s if p lies strictly inside it.
-  void point_on_segment(int s, int p) {
+  // What a pair of boxes holds: points strictly inside segments (the events, at most four: two
+  // collinear segments), or a proper crossing of two segments, at parameters t_s and t_q, with
+  // its position (place_crossing).
+  struct Found {
+    std::array<Event, 4> points{};
+    int point_count = 0;
+    bool crossing = false;
+    Interval t_s{0}, t_q{0};
+    std::array<Interval, 2> box{Interval(0), Interval(0)};
+    Vec2 approx = Vec2::Zero();
+  };
+
+  // A pair of boxes: s > q segments, or segment s and point −1 − q, or two points (s < 0).
+  Found examine(const std::pair<int, int>& pair) const {
+    Found f;
+    const auto [s, q] = pair;
+    if (s < 0) return f;  // two loose points: distinct, so not one vertex
+    if (q < 0)
+      point_on_segment(s, -1 - q, f);
+    else
+      cross(s, q, f);
+    return f;
+  }
+
+  // Adds what examine found: the events, and a crossing as a new point.
+  void add(const std::pair<int, int>& pair, const Found& f) {
+    for (int k = 0; k < f.point_count; ++k) events_.push_back(f.points[k]);
+    if (!f.crossing) return;
+    const auto [s, q] = pair;
+    const int node = static_cast<int>(points_.size() + crossings_.size());
+    // A triangulation of V vertices has about 2V triangles.
+    if (crossings_.size() % 1024 == 0)
+      base::check_triangles(2 * (points_.size() + crossings_.size()), in_.max_triangles,
+                            "the curves cross each other more than " + std::to_string(crossings_.size()) + " times");
+    crossings_.push_back({s, q});
+    events_.push_back({s, node, f.t_s});
+    events_.push_back({q, node, f.t_q});
+    crossing_box_.push_back(f.box);
+    crossing_approx_.push_back(f.approx);
+  }
+
+  // Notes the event of point p on segment s if p lies strictly inside it.
+  void point_on_segment(int s, int p, Found& f) const {
     const Segment& seg = segments_[s];
     if (p == seg.a || p == seg.b) return;
     const Vec2 &a = at(seg.a), &b = at(seg.b), &x = at(p);
     if (geometry::orientation(a, b, x) != 0) return;
     if (!strictly_between(a, b, x)) return;
-    events_.push_back({s, p, point_parameter(seg, x)});
+    f.points[f.point_count++] = {s, p, point_parameter(seg, x)};
   }
 
   // x on the line through a and b: is it strictly between them? Exact on doubles.
@@ -242,38 +287,32 @@ class Builder {
     return lo < x[axis] && x[axis] < hi;
   }
 
-  void pair(int s, int q) {
+  void cross(int s, int q, Found& f) const {
     const Segment &S = segments_[s], &Q = segments_[q];
     const Vec2 &a = at(S.a), &b = at(S.b), &c = at(Q.a), &d = at(Q.b);
     const int o1 = geometry::orientation(a, b, c), o2 = geometry::orientation(a, b, d);
     if (o1 * o2 > 0) return;
     if (o1 == 0 && o2 == 0) {  // collinear: each end strictly inside the other segment is an event
-      point_on_segment(s, Q.a);
-      point_on_segment(s, Q.b);
-      point_on_segment(q, S.a);
-      point_on_segment(q, S.b);
+      point_on_segment(s, Q.a, f);
+      point_on_segment(s, Q.b, f);
+      point_on_segment(q, S.a, f);
+      point_on_segment(q, S.b, f);
       return;
     }
     const int o3 = geometry::orientation(c, d, a), o4 = geometry::orientation(c, d, b);
     if (o3 * o4 > 0) return;
     if (o1 * o2 < 0 && o3 * o4 < 0) {  // a proper crossing: a new point
-      const int node = static_cast<int>(points_.size() + crossings_.size());
-      // A triangulation of V vertices has about 2V triangles.
-      if (crossings_.size() % 1024 == 0)
-        base::check_triangles(2 * (points_.size() + crossings_.size()), in_.max_triangles,
-                              "the curves cross each other more than " + std::to_string(crossings_.size()) + " times");
-      crossings_.push_back({s, q});
-      const Interval t = crossing_parameter(S, Q);
-      events_.push_back({s, node, t});
-      events_.push_back({q, node, crossing_parameter(Q, S)});
-      place_crossing(S, t);
+      f.crossing = true;
+      f.t_s = crossing_parameter(S, Q);
+      f.t_q = crossing_parameter(Q, S);
+      place_crossing(s, q, f);
       return;
     }
     // They touch at one point, an end of one of them (the lines are not the same).
-    if (o1 == 0) point_on_segment(s, Q.a);
-    if (o2 == 0) point_on_segment(s, Q.b);
-    if (o3 == 0) point_on_segment(q, S.a);
-    if (o4 == 0) point_on_segment(q, S.b);
+    if (o1 == 0) point_on_segment(s, Q.a, f);
+    if (o2 == 0) point_on_segment(s, Q.b, f);
+    if (o3 == 0) point_on_segment(q, S.a, f);
+    if (o4 == 0) point_on_segment(q, S.b, f);
   }
 
   // Parameters along segment s = [a, b] as rationals num / den, in intervals and exactly.
@@ -308,34 +347,33 @@ class Builder {
     return exact_crossing_parameter(s, segments_[s1 == e.segment ? s2 : s1]);
   }
 
-  // The newest crossing's position, at parameter t on s: an interval box around it and the
-  // double the mesh takes (the box's middle). Nearly parallel segments give a wide box: then the
-  // position is computed exactly, and the double is the nearest one.
-  void place_crossing(const Segment& s, const Interval& t) {
-    const Vec2 &a = at(s.a), &b = at(s.b);
-    std::array<Interval, 2> box{Interval(a.x()) + t * (Interval(b.x()) - a.x()),
-                                Interval(a.y()) + t * (Interval(b.y()) - a.y())};
+  // The position of the crossing of segments s and q, at parameter f.t_s on s: an interval box
+  // around it and the double the mesh takes (the box's middle). Nearly parallel segments give a
+  // wide box: then the position is computed exactly, and the double is the nearest one.
+  void place_crossing(int s, int q, Found& f) const {
+    const Vec2 &a = at(segments_[s].a), &b = at(segments_[s].b);
+    f.box = {Interval(a.x()) + f.t_s * (Interval(b.x()) - a.x()), Interval(a.y()) + f.t_s * (Interval(b.y()) - a.y())};
     const auto tight = [](const Interval& x) {
       return std::isfinite(x.inf()) && std::isfinite(x.sup()) &&
              x.sup() - x.inf() <= 0x1p-48 * std::max(std::abs(x.inf()), std::abs(x.sup()));
     };
-    Vec2 approx;
-    if (tight(box[0]) && tight(box[1])) {
-      approx = {CGAL::to_double(box[0]), CGAL::to_double(box[1])};
+    if (tight(f.box[0]) && tight(f.box[1])) {
+      f.approx = {CGAL::to_double(f.box[0]), CGAL::to_double(f.box[1])};
     } else {
-      const ExactPoint e = exact_crossing(static_cast<int>(crossings_.size()) - 1);
-      box = {Interval(CGAL::to_interval(e.x)), Interval(CGAL::to_interval(e.y))};
-      approx = geometry::nearest_double(e);
+      const ExactPoint e = exact_crossing_of(s, q);
+      f.box = {Interval(CGAL::to_interval(e.x)), Interval(CGAL::to_interval(e.y))};
+      f.approx = geometry::nearest_double(e);
     }
-    crossing_box_.push_back(box);
-    crossing_approx_.push_back(approx);
   }
-  ExactPoint exact_crossing(int crossing) const {
-    const auto& [s, q] = crossings_[crossing];
+  ExactPoint exact_crossing_of(int s, int q) const {
     const Segment& seg = segments_[s];
     const mpq_class t = exact_crossing_parameter(seg, segments_[q]);
     const Vec2 &a = at(seg.a), &b = at(seg.b);
     return ExactPoint(mpq_class(a.x() + t * (mpq_class(b.x()) - a.x())), mpq_class(a.y() + t * (mpq_class(b.y()) - a.y())));
+  }
+  ExactPoint exact_crossing(int crossing) const {
+    const auto& [s, q] = crossings_[crossing];
+    return exact_crossing_of(s, q);
   }
 
   int find(int x) {
