@@ -138,9 +138,9 @@ bool collapse_if_untouched(const Edge& e, std::vector<char>& touched, const Coll
 
 // How many vertices a part of the mesh has at most when local operations run part by part
 // (mesh::spatial_parts): a count of the mesh's own, so that the parts, and the result, do not
-// depend on the number of threads. Parts of this size leave a tenth to a quarter of the
-// collapses and swaps on their borders (old_truck_indana_model__01), done one after another
-// after the parts.
+// depend on the number of threads. Parts of this size leave about a tenth of the operations on
+// the first cut's borders, and one in fifty to seventy on the borders of both cuts, done one
+// after another (old_truck_indana_model__01, mr_lakshman_poonyth_, hummer_01).
 constexpr int kPartSize = 2048;
 
 // The edges a swap pass looks at: every inner edge once (as its lower end sees it first, so hull
@@ -169,11 +169,11 @@ int swap_pass(TriMesh& m) {
 
 // The iterations' swap pass, part by part (mesh::for_each_in_parts): a swap of (a, b) reads and
 // rewrites its two triangles and reads the stars of their corners, all in the stars of a and b.
-int swap_pass_in_parts(TriMesh& m, const mesh::Parts& parts) {
+int swap_pass_in_parts(TriMesh& m, mesh::Parts& parts) {
   const std::vector<SwapCandidate> candidates = swap_candidates(m);
   std::vector<char> swapped(candidates.size(), 0);
   mesh::for_each_in_parts(
-      parts, candidates.size(),
+      m, parts, candidates.size(),
       [&](std::size_t i) {
         return std::pair{candidates[i].a, candidates[i].b};
       },
@@ -401,7 +401,7 @@ double star_curved(const TriMesh& m, const mesh::Constraints& c, int v) {
 // target; in the curved pipeline, curved_test too. Part by part, each part under a journal of its
 // own (mesh::for_each_in_parts_journaled): a collapse reads the stars of its two ends and rewrites
 // that of the one that goes, and stamps the stars of both. Returns the number kept.
-long coarsening_collapses(TriMesh& m, const mesh::Constraints& c, const Options& o, const mesh::Parts& parts,
+long coarsening_collapses(TriMesh& m, const mesh::Constraints& c, const Options& o, mesh::Parts& parts,
                           StarClock& clock, long since) {
   const double target = o.edge_length;
   const mesh::CollapseTest short_enough = [&](int from, int to) {
@@ -443,7 +443,7 @@ long coarsening_collapses(TriMesh& m, const mesh::Constraints& c, const Options&
 // when a corner of either triangle has a changed star, that is when a and b are both corners of
 // such triangles (`near`). `since` is 0 on the first round: every edge is tried. Part by part,
 // each part under a journal of its own.
-int coarsening_swaps(TriMesh& m, const mesh::Constraints& c, const Options& o, const mesh::Parts& parts,
+int coarsening_swaps(TriMesh& m, const mesh::Constraints& c, const Options& o, mesh::Parts& parts,
                      StarClock& clock, long since) {
   std::vector<char> near(m.vertex_count(), since == 0);
   // A swap in a part marks the corners of the stars of its quad's corners, some of them on the
@@ -492,14 +492,14 @@ int coarsening_swaps(TriMesh& m, const mesh::Constraints& c, const Options& o, c
 
 // Smoothing where this round's collapses and swaps changed a star (the loop left the rest
 // smoothed), part by part; returns the number of moves.
-int smooth_reshaped(TriMesh& m, const mesh::Constraints& c, const mesh::Parts& parts, StarClock& clock,
+int smooth_reshaped(TriMesh& m, const mesh::Constraints& c, mesh::Parts& parts, StarClock& clock,
                     long round_start) {
   const std::vector<int> vertices = vertices_where(m, [&](int v) {
     return clock.reshaped[v] >= round_start && !m.has_exact(v) &&
            !(m.tag(v).kind == mesh::VertexKind::primary && !m.tag(v).on_curve);
   });
   std::vector<char> moved(m.vertex_count(), 0);
-  mesh::for_each_vertex_in_parts(parts, vertices, [&](int v) { moved[v] = mesh::smooth_vertex(m, c, v); });
+  mesh::for_each_vertex_in_parts(m, parts, vertices, [&](int v) { moved[v] = mesh::smooth_vertex(m, c, v); });
   int moves = 0;
   for (int v : vertices)
     if (moved[v]) {
@@ -534,9 +534,7 @@ void coarsen(TriMesh& m, const mesh::Constraints& c, const Options& o, Stats& s)
     s.coarsening_collapses += collapsed;
     const long since_swap = swap_start;
     swap_start = clock.begin_pass();
-    mesh::mark_inner(m, parts);
     s.swaps += coarsening_swaps(m, c, o, parts, clock, since_swap);
-    mesh::mark_inner(m, parts);
     s.smooths += smooth_reshaped(m, c, parts, clock, round_start);
     const std::vector<int> renumbered = m.compact();
     clock.renumber(renumbered, m.vertex_count());
@@ -583,7 +581,7 @@ long split_long_edges(TriMesh& m, const mesh::Constraints& c, const Options& o, 
 // Collapses the edges shorter than 4/5 of their target, shortest first; an edge whose ends
 // changed is looked at again in the next iteration. Returns the number of collapses.
 long collapse_short_edges(TriMesh& m, const mesh::Constraints& c, const Options& o, const Sizing& sizing,
-                          const mesh::Parts& parts, Stats& s) {
+                          mesh::Parts& parts, Stats& s) {
   const auto edge_target = [&](int a, int b) { return sizing.edge(a, b); };
   // Which end may move along the edge, by the kinds, is asked once: the kinds stay while the
   // edge's ends are not touched, and a touched edge is not looked at again. An edge neither of
@@ -602,7 +600,7 @@ long collapse_short_edges(TriMesh& m, const mesh::Constraints& c, const Options&
   // rewrites that of the one that goes; each vertex is touched once.
   std::vector<char> touched(m.vertex_count(), 0), kept(edges.size(), 0);
   mesh::for_each_in_parts(
-      parts, edges.size(),
+      m, parts, edges.size(),
       [&](std::size_t i) {
         return std::pair{edges[i].a, edges[i].b};
       },
@@ -619,7 +617,7 @@ long collapse_short_edges(TriMesh& m, const mesh::Constraints& c, const Options&
 // Every vertex smoothed, a feature vertex off its curve projected onto it (Fig. 8), an exact
 // vertex rounded to doubles where that inverts nothing; part by part (each of these moves v
 // alone, and retags v's own edges).
-void smooth_all(TriMesh& m, const mesh::Constraints& c, const Options& o, const mesh::Parts& parts,
+void smooth_all(TriMesh& m, const mesh::Constraints& c, const Options& o, mesh::Parts& parts,
                 Stats& s) {
   enum : char { none, smoothed, projected };
   std::vector<char> what(m.vertex_count(), none);
@@ -631,7 +629,7 @@ void smooth_all(TriMesh& m, const mesh::Constraints& c, const Options& o, const 
     else
       what[v] = mesh::smooth_vertex(m, c, v) ? smoothed : none;
   };
-  mesh::for_each_vertex_in_parts(parts, vertices_where(m, [](int) { return true; }), move);
+  mesh::for_each_vertex_in_parts(m, parts, vertices_where(m, [](int) { return true; }), move);
   s.smooths += std::count(what.begin(), what.end(), smoothed);
   s.projections += std::count(what.begin(), what.end(), projected);
 }
@@ -639,7 +637,7 @@ void smooth_all(TriMesh& m, const mesh::Constraints& c, const Options& o, const 
 // The vertices of the triangles that are still bad get more smoothing rounds of their own: one
 // Newton step per pass lowers a sliver's energy by a constant factor only, and a sliver that
 // starts at AMIPS 1e4 would otherwise cost a dozen passes over the whole mesh.
-void smooth_bad_again(TriMesh& m, const mesh::Constraints& c, const Options& o, const mesh::Parts& parts,
+void smooth_bad_again(TriMesh& m, const mesh::Constraints& c, const Options& o, mesh::Parts& parts,
                       Stats& s) {
   std::vector<char> bad(m.vertex_count(), 0);
   const std::vector<double> energies = triangle_energies(m);
@@ -651,7 +649,7 @@ void smooth_bad_again(TriMesh& m, const mesh::Constraints& c, const Options& o, 
   });
   for (int round = 0; round < o.extra_smoothing_rounds; ++round) {
     std::vector<char> moved(m.vertex_count(), 0);
-    mesh::for_each_vertex_in_parts(parts, vertices, [&](int v) { moved[v] = mesh::smooth_vertex(m, c, v); });
+    mesh::for_each_vertex_in_parts(m, parts, vertices, [&](int v) { moved[v] = mesh::smooth_vertex(m, c, v); });
     const long count = std::count(moved.begin(), moved.end(), 1);
     s.smooths += count;
     if (count == 0) break;
@@ -820,10 +818,8 @@ Stats optimize(TriMesh& m, const mesh::Constraints& c, const Options& o) {
     // The collapses, swaps and smoothing part by part: the parts stay while no vertex is added.
     mesh::Parts parts = mesh::spatial_parts(m, kPartSize);
     changes += collapse_short_edges(m, c, o, sizing, parts, s);
-    mesh::mark_inner(m, parts);
     // Swaps where they lower the larger energy of the two triangles.
     s.swaps += swap_pass_in_parts(m, parts);
-    mesh::mark_inner(m, parts);
     smooth_all(m, c, o, parts, s);
     smooth_bad_again(m, c, o, parts, s);
     const auto energies = release_and_measure(m, c, o, s);

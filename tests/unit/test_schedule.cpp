@@ -1,7 +1,8 @@
-// Local operations side by side (mesh/schedule.hpp): the parts cover the mesh, none larger than
-// asked, `inner` says exactly which stars lie inside their vertex's part; and collapses, swaps and
-// smoothing run through the parts give the same mesh, bit for bit, on 1 and 4 threads, a valid
-// one by every invariant (exact orientation included); with the journal split per part, each part
+// Local operations side by side (mesh/schedule.hpp): each cut's parts cover the mesh, none larger
+// than asked, `inner` says exactly which stars lie inside their vertex's part, the second cut
+// crosses the first's borders; and collapses, swaps and smoothing run through the parts give the
+// same mesh, bit for bit, on 1 and 4 threads, a valid one by every invariant (exact orientation
+// included); with the journal split per part, each part
 // takes back its own changes alone, and operations tried and taken back side by side give one
 // mesh on any number of threads too.
 #include <gtest/gtest.h>
@@ -26,22 +27,39 @@ TEST(SpatialParts, CoverTheMeshInPartsOfTheSizeAskedAndKnowTheirInnerVertices) {
   const Fixture f = make_grid(24, 3);
   const TriMesh& m = f.mesh;
   const Parts parts = spatial_parts(m, 64);
-  ASSERT_EQ(static_cast<int>(parts.of.size()), m.vertex_count());
-  std::map<int, int> sizes;
-  for (int v = 0; v < m.vertex_count(); ++v) {
-    ASSERT_GE(parts.of[v], 0) << v;
-    ASSERT_LT(parts.of[v], parts.count);
-    ++sizes[parts.of[v]];
-    bool inner = true;
-    for (int t : m.triangles_of(v))
-      for (int w : m.triangle(t)) inner = inner && parts.of[w] == parts.of[v];
-    EXPECT_EQ(bool(parts.inner[v]), inner) << v;
+  for (const Cut* cut : {&parts.first, &parts.second}) {
+    ASSERT_EQ(static_cast<int>(cut->of.size()), m.vertex_count());
+    std::map<int, int> sizes;
+    for (int v = 0; v < m.vertex_count(); ++v) {
+      ASSERT_GE(cut->of[v], 0) << v;
+      ASSERT_LT(cut->of[v], cut->count);
+      ++sizes[cut->of[v]];
+      bool inner = true;
+      for (int t : m.triangles_of(v))
+        for (int w : m.triangle(t)) inner = inner && cut->of[w] == cut->of[v];
+      EXPECT_EQ(bool(cut->inner[v]), inner) << v;
+    }
+    EXPECT_EQ(static_cast<int>(sizes.size()), cut->count);
+    for (const auto& [part, size] : sizes) EXPECT_LE(size, 64) << part;
+    EXPECT_GE(cut->count, 25 * 25 / 64);
+    // Compact parts: most vertices are inner.
+    EXPECT_GT(std::count(cut->inner.begin(), cut->inner.end(), 1), m.vertex_count() / 3);
   }
-  EXPECT_EQ(static_cast<int>(sizes.size()), parts.count);
-  for (const auto& [part, size] : sizes) EXPECT_LE(size, 64) << part;
-  EXPECT_GE(parts.count, 25 * 25 / 64);
-  // Compact parts: most vertices are inner.
-  EXPECT_GT(std::count(parts.inner.begin(), parts.inner.end(), 1), m.vertex_count() / 3);
+}
+
+// The second cut crosses the first's borders: few vertices are on the borders of both (on a
+// 97 × 97 grid in parts of 1,024, 168 of the first cut's 1,212 border vertices).
+TEST(SpatialParts, CutTheSecondTimeAcrossTheFirstCutsBorders) {
+  const Fixture f = make_grid(96, 3);
+  const TriMesh& m = f.mesh;
+  const Parts parts = spatial_parts(m, 1024);
+  int first_border = 0, both = 0;
+  for (int v = 0; v < m.vertex_count(); ++v) {
+    first_border += !parts.first.inner[v];
+    both += !parts.first.inner[v] && !parts.second.inner[v];
+  }
+  EXPECT_GT(first_border, 0);
+  EXPECT_LT(both, first_border / 4) << both << " of " << first_border;
 }
 
 TEST(SpatialParts, RefuseAMeshWhoseJournalIsOpen) {
@@ -53,18 +71,17 @@ TEST(SpatialParts, RefuseAMeshWhoseJournalIsOpen) {
 }
 
 // Two inner vertices of different parts, each with an inner edge to swap.
-std::array<int, 2> inner_of_two_parts(const Parts& parts) {
+std::array<int, 2> inner_of_two_parts(const Cut& cut) {
   std::array<int, 2> found{-1, -1};
-  for (int v = 0; v < static_cast<int>(parts.of.size()); ++v)
-    if (parts.inner[v] && (parts.of[v] == 0 || parts.of[v] == 1) && found[parts.of[v]] < 0)
-      found[parts.of[v]] = v;
+  for (int v = 0; v < static_cast<int>(cut.of.size()); ++v)
+    if (cut.inner[v] && (cut.of[v] == 0 || cut.of[v] == 1) && found[cut.of[v]] < 0) found[cut.of[v]] = v;
   return found;
 }
 
 TEST(SplitJournal, EachPartTakesBackItsOwnChangesAlone) {
   Fixture f = make_grid(16, 5);
   TriMesh& m = f.mesh;
-  const Parts parts = spatial_parts(m, 40);
+  const Cut parts = spatial_parts(m, 40).first;
   const auto [a, b] = inner_of_two_parts(parts);
   ASSERT_GE(a, 0);
   ASSERT_GE(b, 0);
@@ -97,7 +114,7 @@ TEST(SplitJournal, EachPartTakesBackItsOwnChangesAlone) {
 
 TEST(SplitJournal, RefusesAnOpenLevelAndAttachedStores) {
   Fixture f = make_grid(8, 1);
-  const Parts parts = spatial_parts(f.mesh, 16);
+  const Cut parts = spatial_parts(f.mesh, 16).first;
   f.mesh.open_journal();
   EXPECT_THROW(f.mesh.split_journal(parts.of, parts.count), std::logic_error);
   f.mesh.commit();
@@ -116,7 +133,7 @@ Fixture tried(int threads, double keep_below) {
   TriMesh& m = f.mesh;
   base::with_threads(threads, [&] {
     for (int round = 0; round < 2; ++round) {
-      const Parts parts = spatial_parts(m, 48);
+      Parts parts = spatial_parts(m, 48);
       const std::vector<std::array<int, 2>> edges = fixture::edges_of(m);
       std::vector<char> touched(m.vertex_count(), 0);
       for_each_in_parts_journaled(
@@ -168,7 +185,7 @@ Fixture operated(int threads) {
       std::vector<std::array<int, 2>> edges = fixture::edges_of(m);
       std::vector<char> touched(m.vertex_count(), 0);
       for_each_in_parts(
-          parts, edges.size(),
+          m, parts, edges.size(),
           [&](std::size_t i) {
             return std::pair{edges[i][0], edges[i][1]};
           },
@@ -178,19 +195,17 @@ Fixture operated(int threads) {
             if (collapse_edge(m, f.constraints, a, b, 1e9) || collapse_edge(m, f.constraints, b, a, 1e9))
               touched[a] = touched[b] = 1;
           });
-      mark_inner(m, parts);
       edges = fixture::edges_of(m);
       for_each_in_parts(
-          parts, edges.size(),
+          m, parts, edges.size(),
           [&](std::size_t i) {
             return std::pair{edges[i][0], edges[i][1]};
           },
           [&](std::size_t i) { swap_edge(m, edges[i][0], edges[i][1], 0); });
-      mark_inner(m, parts);
       std::vector<int> vertices;
       for (int v = 0; v < m.vertex_count(); ++v)
         if (!m.triangles_of(v).empty()) vertices.push_back(v);
-      for_each_vertex_in_parts(parts, vertices, [&](int v) { smooth_vertex(m, f.constraints, v); });
+      for_each_vertex_in_parts(m, parts, vertices, [&](int v) { smooth_vertex(m, f.constraints, v); });
     }
   });
   return f;
