@@ -183,6 +183,10 @@ for name, (triangles, invalid, fallbacks) in CASES.items():
     check(f"{name}: invalid", report["invalid"] == invalid, str(report))
     check(f"{name}: undecided", report["undecided"] == 0, str(report))
     check(f"{name}: elements decided in rationals", report["exact_fallbacks"] == fallbacks, str(report))
+    seconds = report.get("seconds", {})
+    check(f"{name}: the seconds reading and certifying",
+          sorted(seconds) == ["certify", "read"] and all(isinstance(v, float) and v >= 0 for v in seconds.values()),
+          str(report))
     r = run("check", msh)
     check(f"{name}: exit code", r.returncode == (1 if invalid else 0), r.stdout + r.stderr)
 
