@@ -183,10 +183,12 @@ for name, (triangles, invalid, fallbacks) in CASES.items():
     check(f"{name}: invalid", report["invalid"] == invalid, str(report))
     check(f"{name}: undecided", report["undecided"] == 0, str(report))
     check(f"{name}: elements decided in rationals", report["exact_fallbacks"] == fallbacks, str(report))
-    seconds = report.get("seconds", {})
-    check(f"{name}: the seconds reading and certifying",
+    check(f"{name}: no seconds unless asked", "seconds" not in report, str(report))
+    timed = json.loads(run("check", msh, "--json", "--timing").stdout)
+    seconds = timed.get("seconds", {})
+    check(f"{name}: --timing: the seconds reading and certifying",
           sorted(seconds) == ["certify", "read"] and all(isinstance(v, float) and v >= 0 for v in seconds.values()),
-          str(report))
+          str(timed))
     r = run("check", msh)
     check(f"{name}: exit code", r.returncode == (1 if invalid else 0), r.stdout + r.stderr)
 
