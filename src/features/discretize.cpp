@@ -183,7 +183,7 @@ class Cutter {
   const Lengths& len_;
 };
 
-// The curves are cut side by side, in blocks, and joined in order: chains, sections and the
+// The curves are cut side by side, a block at a time, and joined in order: chains, sections and the
 // pieces' lengths along their chains.
 class Discretizer {
  public:
@@ -191,7 +191,7 @@ class Discretizer {
 
   Discretized run() {
     const Cutter cutter(len_);
-    constexpr std::size_t kBlock = 4096;
+    constexpr std::size_t kBlock = 512;  // curves cut at once: their pieces wait to be joined
     const std::size_t n = soup_.curves.size();
     std::vector<CurveCut> cuts;
     for (std::size_t first = 0; first < n; first += kBlock) {

@@ -49,22 +49,27 @@ class Text {
 
 // Appends line(i, text) for i = 0 … n−1: the lines formatted side by side in blocks, each into a
 // text of its own, and the blocks appended in order (the same bytes as one loop; printing the
-// coordinates' 17 digits is most of the writing).
+// coordinates' 17 digits is most of the writing). A few blocks at a time, so that what waits to
+// be appended stays small beside the file.
 template <class Line>
 void append_lines(Text& t, std::size_t n, const Line& line) {
-  constexpr std::size_t kBlock = 4096;
-  std::vector<std::string> blocks((n + kBlock - 1) / kBlock);
-  base::for_each_part(
-      blocks.size(),
-      [&](std::size_t b) {
-        Text local;
-        for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) line(i, local);
-        blocks[b] = local.take();
-      },
-      1);
-  for (std::string& block : blocks) {
-    t << block;
-    std::string().swap(block);
+  constexpr std::size_t kBlock = 1024, kBlocksAtOnce = 16;
+  std::vector<std::string> blocks(kBlocksAtOnce);
+  for (std::size_t first = 0; first < n; first += kBlock * kBlocksAtOnce) {
+    const std::size_t count = std::min(kBlocksAtOnce, (n - first + kBlock - 1) / kBlock);
+    base::for_each_part(
+        count,
+        [&](std::size_t b) {
+          Text local;
+          const std::size_t begin = first + b * kBlock, end = std::min(n, begin + kBlock);
+          for (std::size_t i = begin; i < end; ++i) line(i, local);
+          blocks[b] = local.take();
+        },
+        1);
+    for (std::size_t b = 0; b < count; ++b) {
+      t << blocks[b];
+      std::string().swap(blocks[b]);
+    }
   }
 }
 

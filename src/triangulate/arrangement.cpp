@@ -217,9 +217,9 @@ class Builder {
     });
     // The box intersection's order is not the same from run to run: sort for determinism.
     std::sort(pairs.begin(), pairs.end());
-    // Each pair is examined on its own, side by side, in blocks (what a block finds is held until
-    // it is added); what they find is added in the sorted order, one after another.
-    constexpr std::size_t kBlock = 1 << 16;
+    // Each pair is examined on its own, side by side, in blocks (what a block finds, about 200
+    // bytes a pair, is held until it is added); what they find is added in the sorted order.
+    constexpr std::size_t kBlock = 1 << 12;
     std::vector<Found> found;
     for (std::size_t first = 0; first < pairs.size(); first += kBlock) {
       const std::size_t n = std::min(kBlock, pairs.size() - first);
