@@ -187,6 +187,12 @@ Search certify(const Coefficients<D, T>& top, const JacobianCheckOptions& option
   };
   s.verdict = JacobianVerdict::not_positive;  // until the search says otherwise
   if (corners_fail(top)) return s;
+  // Most elements are decided by their own coefficients: no search, no stack to allocate.
+  if (std::all_of(top.begin(), top.end(), [](const T& x) { return certainly_positive(x); })) {
+    s.subtriangles = 1;
+    s.verdict = JacobianVerdict::positive;
+    return s;
+  }
   std::vector<std::pair<Coefficients<D, T>, int>> stack{{top, 0}};
   bool gave_up = false;
   while (!stack.empty()) {

@@ -124,16 +124,20 @@ Vec2 line_point(const io::HighOrderMesh& m, std::size_t l, double s) {
 
 }  // namespace
 
-// Every element decided on its own, in parallel (base/parallel.hpp), the counts made in order.
+// Every element decided on its own, in parallel (base/parallel.hpp), the counts made in order. A
+// small mesh, or one thread, is decided in this thread: starting the threads would cost more than
+// it saves (about 0.7 ms, the time of a thousand cubic elements).
 MeshCheck check_mesh(const io::HighOrderMesh& m, const CheckOptions& options) {
+  constexpr std::size_t kFewestForThreads = 4096;
   MeshCheck out;
   out.order = m.order;
   out.triangles = static_cast<std::size_t>(m.triangle_count());
   std::vector<ElementCheck> checks(out.triangles);
-  base::with_threads(options.threads, [&] {
-    base::for_each_part(out.triangles,
-                        [&](std::size_t t) { checks[t] = check_element(m, t, options.exact); });
-  });
+  const auto decide = [&](std::size_t t) { checks[t] = check_element(m, t, options.exact); };
+  if (options.threads == 1 || out.triangles < kFewestForThreads)
+    for (std::size_t t = 0; t < out.triangles; ++t) decide(t);
+  else
+    base::with_threads(options.threads, [&] { base::for_each_part(out.triangles, decide); });
   double min_scaled = INFINITY;
   for (const ElementCheck& e : checks) {
     out.invalid += e.verdict != geometry::JacobianVerdict::positive;
