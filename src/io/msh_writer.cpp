@@ -1,6 +1,7 @@
 #include "io/msh_writer.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <map>
 #include <optional>
@@ -27,15 +28,17 @@ class Text {
     return *this;
   }
   Text& operator<<(long v) {
-    out_ += std::to_string(v);
+    char buf[24];
+    out_.append(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
     return *this;
   }
   Text& operator<<(int v) { return *this << long(v); }
   Text& operator<<(std::size_t v) { return *this << long(v); }
+  // 17 significant digits, as printf's %.17g writes them (to_chars with a precision is defined
+  // as printf in the C locale), without printf's cost of parsing a format.
   Text& operator<<(double v) {
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%.17g", v);
-    out_ += buf;
+    out_.append(buf, std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 17).ptr);
     return *this;
   }
   Text& operator<<(const geometry::Box2& b) {
@@ -222,11 +225,12 @@ void write_body22(Text& t, const HighOrderMesh& m, const Entities& entities) {
     const std::vector<int> physicals = g->physicals.empty() ? std::vector<int>{0} : g->physicals;
     for (int physical : physicals) {
       const int entity = g->dim == 1 ? ++curve : g->entity;
-      for (int e : g->elements) {
-        t << id++ << " " << type_of(m, *g) << " 2 " << physical << " " << entity;
-        for (int v : nodes_of(m, *g, e)) t << " " << v + 1;
-        t << "\n";
-      }
+      append_lines(t, g->elements.size(), [&, first = id](std::size_t i, Text& line) {
+        line << first + long(i) << " " << type_of(m, *g) << " 2 " << physical << " " << entity;
+        for (int v : nodes_of(m, *g, g->elements[i])) line << " " << v + 1;
+        line << "\n";
+      });
+      id += long(g->elements.size());
     }
   }
   t << "$EndElements\n";
@@ -245,7 +249,7 @@ void write_body41(Text& t, const HighOrderMesh& m, const Entities& entities) {
   // (dolfinx's gmshio) need it.
   const std::size_t n = m.nodes.size();
   t << "$Nodes\n1 " << n << " 1 " << n << "\n2 1 0 " << n << "\n";
-  for (std::size_t v = 0; v < n; ++v) t << v + 1 << "\n";
+  append_lines(t, n, [](std::size_t v, Text& line) { line << v + 1 << "\n"; });
   append_lines(t, n, [&](std::size_t v, Text& line) { line << m.nodes[v].x() << " " << m.nodes[v].y() << " 0\n"; });
   t << "$EndNodes\n";
   const std::size_t elements = entities.elements;
@@ -253,11 +257,12 @@ void write_body41(Text& t, const HighOrderMesh& m, const Entities& entities) {
   long id = 1;
   for (const Group* g : entities.with_elements) {
     t << g->dim << " " << g->entity << " " << type_of(m, *g) << " " << g->elements.size() << "\n";
-    for (int e : g->elements) {
-      t << id++;
-      for (int v : nodes_of(m, *g, e)) t << " " << v + 1;
-      t << "\n";
-    }
+    append_lines(t, g->elements.size(), [&, first = id](std::size_t i, Text& line) {
+      line << first + long(i);
+      for (int v : nodes_of(m, *g, g->elements[i])) line << " " << v + 1;
+      line << "\n";
+    });
+    id += long(g->elements.size());
   }
   t << "$EndElements\n";
 }
