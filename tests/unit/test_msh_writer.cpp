@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -205,6 +207,59 @@ TEST(MshWriter, GmshAndMeshioSeeEveryGroupOfALine) {
     EXPECT_EQ(std::system(("/usr/bin/python3 " + script_path + " " + path + " " + std::to_string(version)).c_str()), 0)
         << "version " << version;
   }
+}
+
+// The node and element lines are formatted side by side in blocks of lines: on a mesh of many
+// blocks, every line is where one loop would put it, and every coordinate is printf's %.17g,
+// whatever the double (subnormal, huge, negative zero, integral).
+TEST(MshWriter, LinesInBlocksAreTheLinesOfOneLoopWithPrintfsDigits) {
+  const std::vector<double> special{1.0 / 3, 0.1, -0.0, 5e-324, 2.2250738585072014e-308, 1e300,
+                                    -1.7976931348623157e308, 123456789.123456789, 1e17, 0.5, 42};
+  HighOrderMesh m;
+  m.order = 1;
+  std::uint64_t state = 12345;
+  const auto next = [&state] {
+    state = state * 6364136223846793005u + 1442695040888963407u;
+    return static_cast<double>(state >> 11) * 0x1p-53 * 2 - 1;
+  };
+  for (int v = 0; v < 40000; ++v)
+    m.nodes.push_back(v < 2 * int(special.size()) ? Vec2(special[v / 2], special[special.size() - 1 - v / 2])
+                                                  : Vec2(next() * 1e3, next() * 1e-3));
+  for (int t = 0; t + 2 < int(m.nodes.size()); t += 2) {
+    m.triangles.insert(m.triangles.end(), {t, t + 1, t + 2});
+    m.triangle_physical.push_back(4);
+  }
+  const auto g = [](double v) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return std::string(buf);
+  };
+  std::string coordinates, numbered, tags, elements41, elements22;
+  for (std::size_t v = 0; v < m.nodes.size(); ++v) {
+    const std::string xy = g(m.nodes[v].x()) + " " + g(m.nodes[v].y()) + " 0\n";
+    coordinates += xy;
+    numbered += std::to_string(v + 1) + " " + xy;
+    tags += std::to_string(v + 1) + "\n";
+  }
+  for (int t = 0; t < m.triangle_count(); ++t) {
+    const auto n = m.triangle(t);
+    const std::string corners = " " + std::to_string(n[0] + 1) + " " + std::to_string(n[1] + 1) + " " +
+                                std::to_string(n[2] + 1) + "\n";
+    elements41 += std::to_string(t + 1) + corners;
+    elements22 += std::to_string(t + 1) + " 2 2 4 1" + corners;
+  }
+  const std::size_t n = m.nodes.size(), e = static_cast<std::size_t>(m.triangle_count());
+  const std::string text41 = msh_string(m), text22 = msh_string(m, {22});
+  EXPECT_EQ(section(text41, "Nodes"), "1 " + std::to_string(n) + " 1 " + std::to_string(n) + "\n2 1 0 " +
+                                          std::to_string(n) + "\n" + tags + coordinates);
+  EXPECT_EQ(section(text41, "Elements"), "1 " + std::to_string(e) + " 1 " + std::to_string(e) + "\n2 1 2 " +
+                                             std::to_string(e) + "\n" + elements41);
+  EXPECT_EQ(section(text22, "Nodes"), std::to_string(n) + "\n" + numbered);
+  EXPECT_EQ(section(text22, "Elements"), std::to_string(e) + "\n" + elements22);
+  // The special values are there, as printf writes them.
+  EXPECT_THAT(coordinates, testing::HasSubstr("\n4.9406564584124654e-324 "));
+  EXPECT_THAT(coordinates, testing::HasSubstr("\n-0 "));
+  EXPECT_THAT(coordinates, testing::HasSubstr("\n1e+17 "));
 }
 
 TEST(MeshSvg, DrawsEveryEdgeOnce) {
