@@ -4,6 +4,7 @@
 // their order afterwards, so the result is the same, byte for byte, for any number of threads.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
 #include <cstddef>
@@ -19,6 +20,18 @@ void for_each_part(std::size_t n, const Part& part, std::size_t grain = 32) {
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t i = r.begin(); i != r.end(); ++i) part(i);
                     });
+}
+
+// Calls a() and b(), side by side when `side_by_side` and the caller's arena has threads; a and b
+// must write nothing the other reads or writes.
+template <class A, class B>
+void both(const A& a, const B& b, bool side_by_side = true) {
+  if (side_by_side) {
+    tbb::parallel_invoke(a, b);
+  } else {
+    a();
+    b();
+  }
 }
 
 // Runs `work` on at most `threads` threads (0: every hardware thread): what for_each_part inside

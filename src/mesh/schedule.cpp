@@ -1,7 +1,10 @@
 #include "mesh/schedule.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <stdexcept>
+
+#include "base/parallel.hpp"
 
 namespace curvemesh::mesh {
 
@@ -12,12 +15,20 @@ struct Placed {
   int v;
 };
 
-// Halves vertices [first, last) of `order` at the median until each part has at most `size`
-// (positions copied beside the numbers: the selection reads them many times).
-void halve(std::vector<Placed>& order, std::size_t first, std::size_t last, std::size_t size, Cut& cut) {
+// The number of parts halve() makes of n vertices: a function of n alone, so that each half knows
+// the number of its first part before the other half is cut, and the halves can be cut side by side.
+int parts_of(std::size_t n, std::size_t size) {
+  return n <= size ? 1 : parts_of(n / 2, size) + parts_of(n - n / 2, size);
+}
+
+// Halves vertices [first, last) of `order` at the median until each part has at most `size`, the
+// parts numbered from `part` on in depth-first order (positions copied beside the numbers: the
+// selection reads them many times). Each half sorts its own range of `order` and numbers its own
+// vertices, so large halves are cut side by side.
+void halve(std::vector<Placed>& order, std::size_t first, std::size_t last, std::size_t size, int part,
+           std::vector<int>& of) {
   if (last - first <= size) {
-    for (std::size_t i = first; i < last; ++i) cut.of[order[i].v] = cut.count;
-    ++cut.count;
+    for (std::size_t i = first; i < last; ++i) of[order[i].v] = part;
     return;
   }
   Vec2 lo = order[first].p, hi = lo;
@@ -31,8 +42,9 @@ void halve(std::vector<Placed>& order, std::size_t first, std::size_t last, std:
   std::nth_element(at(first), at(mid), at(last), [&](const Placed& a, const Placed& b) {
     return a.p[axis] < b.p[axis] || (a.p[axis] == b.p[axis] && a.v < b.v);
   });
-  halve(order, first, mid, size, cut);
-  halve(order, mid, last, size, cut);
+  const int second = part + parts_of(mid - first, size);
+  base::both([&] { halve(order, first, mid, size, part, of); },
+             [&] { halve(order, mid, last, size, second, of); }, last - first >= 4 * size);
 }
 
 // `turned`: the coordinates turned by 45° (and scaled by √2): (x + y, y − x).
@@ -45,7 +57,9 @@ Cut cut_of(const TriMesh& m, std::size_t size, bool turned) {
     const Vec2& p = m.point(v);
     order.push_back({turned ? Vec2(p.x() + p.y(), p.y() - p.x()) : p, v});
   }
-  if (!order.empty()) halve(order, 0, order.size(), size, cut);
+  if (order.empty()) return cut;
+  halve(order, 0, order.size(), size, 0, cut.of);
+  cut.count = parts_of(order.size(), size);
   return cut;
 }
 
@@ -54,22 +68,29 @@ Cut cut_of(const TriMesh& m, std::size_t size, bool turned) {
 void mark_inner(const TriMesh& m, Cut& cut) {
   cut.inner.assign(m.vertex_count(), 0);
   for (int v = 0; v < m.vertex_count(); ++v) cut.inner[v] = cut.of[v] >= 0;
-  // One sweep over the triangles, in memory order: the corners of a triangle across parts are not inner.
-  for (int t = 0; t < m.triangle_slots(); ++t) {
-    const Triangle& tri = m.triangle(t);
-    if (tri[0] < 0) continue;
-    if (cut.of[tri[0]] != cut.of[tri[1]] || cut.of[tri[0]] != cut.of[tri[2]])
-      cut.inner[tri[0]] = cut.inner[tri[1]] = cut.inner[tri[2]] = 0;
-  }
+  // The corners of a triangle across parts are not inner; triangles side by side, and a corner
+  // two of them clear is cleared by both (the same byte written twice, atomically).
+  base::for_each_part(
+      static_cast<std::size_t>(m.triangle_slots()),
+      [&](std::size_t t) {
+        const Triangle& tri = m.triangle(static_cast<int>(t));
+        if (tri[0] < 0) return;
+        if (cut.of[tri[0]] != cut.of[tri[1]] || cut.of[tri[0]] != cut.of[tri[2]])
+          for (const int c : tri) std::atomic_ref<char>(cut.inner[c]).store(0, std::memory_order_relaxed);
+      },
+      4096);
 }
 
 Parts spatial_parts(const TriMesh& m, int size) {
   // The journal is one list: operations side by side cannot record into it.
   if (m.journal_open()) throw std::logic_error("mesh::spatial_parts: the mesh's journal is open");
   const auto most = static_cast<std::size_t>(std::max(1, size));
-  Parts parts{cut_of(m, most, false), cut_of(m, most, true)};
-  mark_inner(m, parts.first);
-  mark_inner(m, parts.second);
+  Parts parts;
+  const auto make = [&](Cut& cut, bool turned) {
+    cut = cut_of(m, most, turned);
+    mark_inner(m, cut);
+  };
+  base::both([&] { make(parts.first, false); }, [&] { make(parts.second, true); });
   return parts;
 }
 

@@ -62,6 +62,20 @@ TEST(SpatialParts, CutTheSecondTimeAcrossTheFirstCutsBorders) {
   EXPECT_LT(both, first_border / 4) << both << " of " << first_border;
 }
 
+// The halves are cut side by side, each numbering its parts from where the other's end: the parts
+// are the same, numbers included, on any number of threads.
+TEST(SpatialParts, TheSamePartsOnAnyNumberOfThreads) {
+  const Fixture f = make_grid(96, 5);
+  const Parts one = base::with_threads(1, [&] { return spatial_parts(f.mesh, 200); });
+  const Parts four = base::with_threads(4, [&] { return spatial_parts(f.mesh, 200); });
+  for (const auto& [a, b] : {std::pair{&one.first, &four.first}, std::pair{&one.second, &four.second}}) {
+    EXPECT_GE(a->count, 97 * 97 / 200);
+    EXPECT_EQ(a->count, b->count);
+    EXPECT_EQ(a->of, b->of);
+    EXPECT_EQ(a->inner, b->inner);
+  }
+}
+
 TEST(SpatialParts, RefuseAMeshWhoseJournalIsOpen) {
   Fixture f = make_grid(8, 1);
   f.mesh.open_journal();  // operations side by side cannot record into one journal
