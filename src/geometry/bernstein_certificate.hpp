@@ -9,6 +9,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -103,6 +105,122 @@ inline bool certainly_nonpositive(const ErrorBounded& x) {
 }
 inline double approx(const ErrorBounded& x) {
   return x.value;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The static filter in front of ErrorBounded: one error bound for every element, known before any
+// element is seen, as CGAL's static filters have (Devillers & Pion, "Efficient exact geometric
+// predicates for Delaunay triangulations", ALENEX 2003): the coefficients are computed in plain
+// doubles and one comparison each decides almost every element; what it leaves goes to
+// ErrorBounded, which carries a bound through every operation (several times the work).
+//
+// The bound. For a computation of +, −, × and ÷ by exact constants, with computed value v̂, exact
+// value v and exact magnitude M (the same computation on the operands' absolute values, − taken as
+// +, ÷c as ÷|c|), |v̂ − v| ≤ γ_k M, γ_k = ku / (1 − ku), where k counts roundings by the rule of
+// Roundings below (induction over the operations, from fl(a ∘ b) = (a ∘ b)(1 + δ), |δ| ≤ u, and
+// (1 + γ_i)(1 + γ_j) ≤ 1 + γ_{i+j}; Higham §3.1–3.4). The leaves are the node coordinates relative
+// to node 0, one rounding each (|l̂ − l| ≤ u |l|), which keeps the bound relative to the element's
+// size. The coefficients are homogeneous of degree 2 in the leaves and M is a polynomial with
+// non-negative coefficients, so with m the largest |l̂|, M ≤ m² M₁ / (1 − u)², M₁ being M with every
+// leaf 1, computed once at compile time (M̂₁, with M₁ ≤ (1 + γ_k) M̂₁). Altogether
+// |v̂ − v| ≤ k·kEps M̂₁ m² while ku ≤ 1/8; the test asks for twice that, which absorbs the rounding
+// of the bound itself.
+//
+// Underflow and overflow: the filter is used only when m lies in [2^-400, 2^400]. Then no value
+// overflows (all are below 2^820); a + or − that underflows is exact (Hauser, ACM TOPLAS 18(2),
+// 1996) and a × or ÷ adds at most 2^-1075 beyond its relative error, which reaches the result
+// multiplied by at most 2^10 m (a later product of degree-1 quantities) and 2^10 (constants), over
+// fewer than 2^12 operations: at most 2^-1043 max(1, 2^10 m), below the 2^-150 m² added to the bound.
+struct Magnitude {
+  double value = 0, magnitude = 0;
+  constexpr Magnitude() = default;
+  constexpr explicit Magnitude(int k) : value(k), magnitude(k < 0 ? -k : k) {}
+  constexpr Magnitude(double v, double m) : value(v), magnitude(m) {}
+  constexpr Magnitude& operator+=(const Magnitude& o) {
+    value += o.value;
+    magnitude += o.magnitude;
+    return *this;
+  }
+};
+constexpr Magnitude operator+(const Magnitude& a, const Magnitude& b) {
+  return {a.value + b.value, a.magnitude + b.magnitude};
+}
+constexpr Magnitude operator-(const Magnitude& a, const Magnitude& b) {
+  return {a.value - b.value, a.magnitude + b.magnitude};
+}
+constexpr Magnitude operator*(const Magnitude& a, const Magnitude& b) {
+  return {a.value * b.value, a.magnitude * b.magnitude};
+}
+constexpr Magnitude operator/(const Magnitude& a, const Magnitude& b) {  // b an exact constant
+  return {a.value / b.value, a.magnitude / (b.value < 0 ? -b.value : b.value)};
+}
+
+// The rounding count k of the bound above, evaluated at compile time on the computation itself:
+// a sum or difference adds one rounding to the larger count of its operands, a product or
+// quotient one to the sum of their counts; a small integer constant is exact (count 0).
+struct Roundings {
+  int count = 0;
+  constexpr Roundings() = default;
+  constexpr explicit Roundings(int) {}
+  constexpr Roundings& operator+=(const Roundings& o) { return *this = of(std::max(count, o.count) + 1); }
+  static constexpr Roundings of(int k) {
+    Roundings r;
+    r.count = k;
+    return r;
+  }
+};
+constexpr Roundings operator+(const Roundings& a, const Roundings& b) {
+  return Roundings::of(std::max(a.count, b.count) + 1);
+}
+constexpr Roundings operator-(const Roundings& a, const Roundings& b) {
+  return a + b;
+}
+constexpr Roundings operator*(const Roundings& a, const Roundings& b) {
+  return Roundings::of(a.count + b.count + 1);
+}
+constexpr Roundings operator/(const Roundings& a, const Roundings& b) {
+  return a * b;
+}
+
+// The largest rounding count over the coefficients `Bernstein` computes from N nodes, each
+// coordinate one rounding (the subtraction of node 0).
+template <std::size_t N, class Bernstein>
+constexpr int largest_rounding_count() {
+  std::array<PointT<Roundings>, N> leaves{};
+  for (auto& p : leaves) p = {Roundings::of(1), Roundings::of(1)};
+  int k = 0;
+  for (const Roundings& r : Bernstein{}(leaves)) k = std::max(k, r.count);
+  return k;
+}
+
+// Per coefficient, k·kEps M̂₁: the bound on its error is that times m².
+template <std::size_t N, class Bernstein>
+constexpr auto unit_error_bounds() {
+  constexpr int k = largest_rounding_count<N, Bernstein>();
+  static_assert(k > 0 && k < 1000, "ku ≤ 1/8 by far");
+  std::array<PointT<Magnitude>, N> leaves{};
+  for (auto& p : leaves) p = {Magnitude(1.0, 1.0), Magnitude(1.0, 1.0)};
+  const auto top = Bernstein{}(leaves);
+  std::array<double, std::tuple_size_v<decltype(top)>> out{};
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = k * kEps * top[i].magnitude;
+  return out;
+}
+
+// The coefficients, in doubles, when the static filter proves every one of them positive.
+template <std::size_t N, class Bernstein>
+auto positive_by_static_bound(const std::array<PointT<double>, N>& local, Bernstein bernstein)
+    -> std::optional<decltype(bernstein(local))> {
+  static constexpr auto unit = unit_error_bounds<N, Bernstein>();
+  double m = 0;
+  for (const auto& p : local)
+    for (double x : p)
+      if (!(std::abs(x) <= m)) m = std::abs(x);  // a NaN makes m NaN, and the filter declines
+  if (!(m >= 0x1p-400 && m <= 0x1p400)) return std::nullopt;
+  const auto top = bernstein(local);
+  const double mm = m * m, floor = 0x1p-150 * mm;
+  for (std::size_t i = 0; i < top.size(); ++i)
+    if (!(top[i] > 2 * unit[i] * mm + floor)) return std::nullopt;
+  return top;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -219,32 +337,40 @@ Search certify(const Coefficients<D, T>& top, const JacobianCheckOptions& option
 }
 
 // The double-precision certificate of an element of degree-D Jacobian determinant, given by its
-// N nodes: `bernstein` gives the determinant's Bernstein coefficients of a node array, `det` its
-// value at (u, v). Relative to node 0: the subtraction's error is relative to the difference, i.e.
-// to the element's size, where absolute coordinates would bring errors relative to the position.
-template <int D, std::size_t N, class Bernstein, class Det>
-JacobianCertificate certificate(const std::array<Vec2, N>& nodes, Bernstein bernstein, Det det,
+// N nodes: `bernstein` gives the determinant's Bernstein coefficients of a node array, `lattice_min`
+// its smallest value at the 15 points (j/4, k/4). Relative to node 0: the subtraction's error is relative to the
+// difference, i.e. to the element's size, where absolute coordinates would bring errors relative
+// to the position. The static filter decides first; ErrorBounded and the search take what it
+// leaves. Both give the coefficients the same values (the same operations on the same doubles).
+template <int D, std::size_t N, class Bernstein, class LatticeMin>
+JacobianCertificate certificate(const std::array<Vec2, N>& nodes, Bernstein bernstein, LatticeMin lattice_min,
                                 const JacobianCheckOptions& options) {
-  std::array<PointT<ErrorBounded>, N> local;
   std::array<PointT<double>, N> local_values;
   for (std::size_t i = 0; i < N; ++i)
-    for (int c = 0; c < 2; ++c) {
-      local[i][c] = ErrorBounded(nodes[i][c], 0) - ErrorBounded(nodes[0][c], 0);
-      local_values[i][c] = local[i][c].value;
-    }
-  const auto top = bernstein(local);
+    for (int c = 0; c < 2; ++c) local_values[i][c] = nodes[i][c] - nodes[0][c];
   JacobianCertificate out;
-  const auto [lo, hi] = std::minmax_element(top.begin(), top.end(),
-                                            [](const auto& a, const auto& b) { return a.value < b.value; });
-  out.min_coefficient = lo->value;
-  out.max_coefficient = hi->value;
-  const Search s = certify<D>(top, options);
+  Search s;
+  std::array<double, bernstein_count(D)> values;
+  if (const auto positive = positive_by_static_bound(local_values, bernstein)) {
+    values = *positive;
+    s.verdict = JacobianVerdict::positive;
+    s.subtriangles = 1;
+    for (std::size_t i : kCornerIndex<D>) s.min_corner = std::min(s.min_corner, values[i]);
+  } else {
+    std::array<PointT<ErrorBounded>, N> local;
+    for (std::size_t i = 0; i < N; ++i)
+      for (int c = 0; c < 2; ++c) local[i][c] = ErrorBounded(nodes[i][c], 0) - ErrorBounded(nodes[0][c], 0);
+    const auto top = bernstein(local);
+    for (std::size_t i = 0; i < top.size(); ++i) values[i] = top[i].value;
+    s = certify<D>(top, options);
+  }
+  const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+  out.min_coefficient = *lo;
+  out.max_coefficient = *hi;
   out.verdict = s.verdict;
   out.subtriangles = s.subtriangles;
   // min det J estimate: the degree-4 lattice and every sub-triangle corner visited.
-  out.min_value = s.min_corner;
-  for (int k = 0; k <= 4; ++k)
-    for (int j = 0; j + k <= 4; ++j) out.min_value = std::min(out.min_value, det(local_values, j / 4.0, k / 4.0));
+  out.min_value = std::min(s.min_corner, lattice_min(local_values));
   out.scaled_jacobian = out.max_coefficient > 0 ? out.min_value / out.max_coefficient
                                                 : -std::numeric_limits<double>::infinity();
   return out;

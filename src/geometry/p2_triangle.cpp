@@ -104,7 +104,13 @@ JacobianVerdict certify_jacobian_exact(const P2Nodes& nodes, const JacobianCheck
 JacobianCertificate certify_jacobian(const P2Nodes& nodes, const JacobianCheckOptions& options) {
   return detail::certificate<2>(
       nodes, [](const auto& n) { return p2_jacobian_det_bernstein(n); },
-      [](const auto& n, double u, double v) { return p2_jacobian_det(n, u, v); }, options);
+      [](const P2NodesT<double>& n) {
+        double m = std::numeric_limits<double>::infinity();
+        for (int k = 0; k <= 4; ++k)
+          for (int j = 0; j + k <= 4; ++j) m = std::min(m, p2_jacobian_det(n, j / 4.0, k / 4.0));
+        return m;
+      },
+      options);
 }
 
 }  // namespace curvemesh::geometry

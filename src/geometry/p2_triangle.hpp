@@ -92,7 +92,7 @@ T p2_jacobian_det(const P2NodesT<T>& n, const T& u, const T& v) {
 // B¹_β B¹_γ = B²_β+γ / C(β+γ) with C the multinomial, so D_δ = 4 / C(δ) Σ_{β+γ=δ} U_β × V_γ.
 // Gmsh node → control index (i, j, k): 0→200, 1→020, 2→002, 3→110, 4→011, 5→101.
 template <class T>
-std::array<T, 6> p2_jacobian_det_bernstein(const P2NodesT<T>& n) {
+constexpr std::array<T, 6> p2_jacobian_det_bernstein(const P2NodesT<T>& n) {
   const auto control = [](const PointT<T>& a, const PointT<T>& m, const PointT<T>& b) {
     PointT<T> p;
     for (int c = 0; c < 2; ++c) p[c] = T(T(2) * m[c] - (a[c] + b[c]) / T(2));

@@ -139,11 +139,10 @@ constexpr std::array<std::array<T, 2>, 10> p3_basis_gradients(const T& u, const 
   return d;
 }
 
-// det J(u, v) from the Lagrange basis derivatives: the reference formula the Bernstein form is
-// tested against.
+// det J(u, v) from the Lagrange basis derivatives d = ∇ℓ_i(u, v): the reference formula the
+// Bernstein form is tested against.
 template <class T>
-T p3_jacobian_det(const P3NodesT<T>& nodes, const T& u, const T& v) {
-  const auto d = p3_basis_gradients(u, v);
+T p3_jacobian_det_of_gradients(const P3NodesT<T>& nodes, const std::array<std::array<T, 2>, 10>& d) {
   T xu(0), yu(0), xv(0), yv(0);
   for (int i = 0; i < 10; ++i) {
     xu += d[i][0] * nodes[i][0];
@@ -154,6 +153,11 @@ T p3_jacobian_det(const P3NodesT<T>& nodes, const T& u, const T& v) {
   return T(xu * yv - yu * xv);
 }
 
+template <class T>
+T p3_jacobian_det(const P3NodesT<T>& nodes, const T& u, const T& v) {
+  return p3_jacobian_det_of_gradients(nodes, p3_basis_gradients(u, v));
+}
+
 // The Bézier control net of the map (degree 3, in the Bernstein order above). Corners are
 // shared; along an edge A→B with Lagrange nodes L_a (at 1/3) and L_b (at 2/3) the cubic
 // interpolation conditions give the control point next to A as (−5A + 18L_a − 9L_b + 2B) / 6;
@@ -161,7 +165,7 @@ T p3_jacobian_det(const P3NodesT<T>& nodes, const T& u, const T& v) {
 // Gmsh node → control index (i, j, k): 0→300, 1→030, 2→003, 3→210, 4→120, 5→021, 6→012,
 // 7→102, 8→201, 9→111.
 template <class T>
-std::array<PointT<T>, 10> p3_control_net(const P3NodesT<T>& n) {
+constexpr std::array<PointT<T>, 10> p3_control_net(const P3NodesT<T>& n) {
   auto near_a = [](const PointT<T>& a, const PointT<T>& la, const PointT<T>& lb, const PointT<T>& b) {
     PointT<T> p;
     for (int c = 0; c < 2; ++c) p[c] = T((T(-5) * a[c] + T(18) * la[c] - T(9) * lb[c] + T(2) * b[c]) / T(6));
@@ -195,11 +199,39 @@ constexpr int multinomial(int i, int j, int k) {
   return f[i + j + k] / (f[i] * f[j] * f[k]);
 }
 
+// The products of the two degree-2 nets that make det J's coefficients, in the order of the loops
+// ka, ja, kb, jb (each coefficient sums its terms in that order): du index, dv index, coefficient
+// index and the multinomial weight C(α) C(β). Listed once so that the sum unrolls with constant
+// indices.
+struct ProductTerm {
+  std::size_t a, b, sum;
+  int weight;
+};
+constexpr std::array<ProductTerm, 36> p3_product_terms() {
+  std::array<ProductTerm, 36> out{};
+  std::size_t n = 0;
+  for (int ka = 0; ka <= 2; ++ka)
+    for (int ja = 0; ja + ka <= 2; ++ja)
+      for (int kb = 0; kb <= 2; ++kb)
+        for (int jb = 0; jb + kb <= 2; ++jb)
+          out[n++] = {bernstein_index(2, ja, ka), bernstein_index(2, jb, kb), bernstein_index(4, ja + jb, ka + kb),
+                      multinomial(2 - ja - ka, ja, ka) * multinomial(2 - jb - kb, jb, kb)};
+  return out;
+}
+inline constexpr std::array<ProductTerm, 36> kP3ProductTerms = p3_product_terms();
+constexpr std::array<int, 15> p3_multinomials() {
+  std::array<int, 15> out{};
+  for (int k = 0; k <= 4; ++k)
+    for (int j = 0; j + k <= 4; ++j) out[bernstein_index(4, j, k)] = multinomial(4 - j - k, j, k);
+  return out;
+}
+inline constexpr std::array<int, 15> kP3Multinomials = p3_multinomials();
+
 // det J as a degree-4 Bernstein polynomial (15 coefficients), exact for exact T.
 // ∂x/∂u = 3 Σ (P_α+e1 − P_α+e0) B²_α and ∂x/∂v = 3 Σ (P_α+e2 − P_α+e0) B²_α; the product
 // B²_α B²_β = [C(α) C(β) / C(α+β)] B⁴_α+β with C the multinomial.
 template <class T>
-std::array<T, 15> p3_jacobian_det_bernstein(const P3NodesT<T>& nodes) {
+constexpr std::array<T, 15> p3_jacobian_det_bernstein(const P3NodesT<T>& nodes) {
   const auto P = p3_control_net(nodes);
   std::array<PointT<T>, 6> du, dv;  // degree-2 nets, without the factor 3
   for (int k = 0; k <= 2; ++k)
@@ -214,20 +246,14 @@ std::array<T, 15> p3_jacobian_det_bernstein(const P3NodesT<T>& nodes) {
     }
   std::array<T, 15> sum;
   sum.fill(T(0));
-  for (int ka = 0; ka <= 2; ++ka)
-    for (int ja = 0; ja + ka <= 2; ++ja)
-      for (int kb = 0; kb <= 2; ++kb)
-        for (int jb = 0; jb + kb <= 2; ++jb) {
-          const auto& a = du[bernstein_index(2, ja, ka)];
-          const auto& b = dv[bernstein_index(2, jb, kb)];
-          const int w = multinomial(2 - ja - ka, ja, ka) * multinomial(2 - jb - kb, jb, kb);
-          sum[bernstein_index(4, ja + jb, ka + kb)] += T(w) * T(a[0] * b[1] - a[1] * b[0]);
-        }
-  for (int k = 0; k <= 4; ++k)
-    for (int j = 0; j + k <= 4; ++j) {
-      T& s = sum[bernstein_index(4, j, k)];
-      s = T(T(9) * s / T(multinomial(4 - j - k, j, k)));
-    }
+#pragma GCC unroll 36
+  for (const ProductTerm& e : kP3ProductTerms) {
+    const auto& a = du[e.a];
+    const auto& b = dv[e.b];
+    sum[e.sum] += T(e.weight) * T(a[0] * b[1] - a[1] * b[0]);
+  }
+#pragma GCC unroll 15
+  for (std::size_t i = 0; i < 15; ++i) sum[i] = T(T(9) * sum[i] / T(kP3Multinomials[i]));
   return sum;
 }
 
