@@ -17,10 +17,17 @@ namespace curvemesh::io {
 
 namespace {
 
+// The number of the line holding `at` in `text` (from 1). Only messages need it: counting lines
+// while reading took a fifth of the time.
+long line_of(std::string_view text, const char* at) {
+  return 1 + static_cast<long>(std::count(text.data(), at, '\n'));
+}
+
 struct Section {
   std::string name;
   std::string_view body;  // the lines between $name and $Endname
-  long first_line;        // line number of body's first line
+  std::string_view text;  // the whole file, for line numbers
+  long line_at(std::size_t offset) const { return line_of(text, body.data() + offset); }
 };
 
 [[noreturn]] void fail(long line, const std::string& section, const std::string& message) {
@@ -34,12 +41,12 @@ std::string quoted(std::string_view word) {
   return "'" + out + (word.size() > 40 ? "...'" : "'");
 }
 
-// The whitespace-separated words of a section, with the line each one is on.
+// The whitespace-separated words of a section.
 class Tokens {
  public:
-  explicit Tokens(const Section& s) : s_(s), line_(s.first_line) {}
+  explicit Tokens(const Section& s) : s_(s) {}
 
-  [[noreturn]] void fail(const std::string& message) const { io::fail(line_, s_.name, message); }
+  [[noreturn]] void fail(const std::string& message) const { io::fail(s_.line_at(at_), s_.name, message); }
 
   bool at_end() {
     skip_space();
@@ -52,11 +59,8 @@ class Tokens {
     return s_.body.substr(start, at_ - start);
   }
   long long integer(const char* what) {
-    const std::string_view w = word();
     long long v = 0;
-    const auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
-    if (ec != std::errc() || end != w.data() + w.size())
-      fail(std::string("expected an integer (") + what + "), found " + quoted(w));
+    if (!parse_integer(v)) fail(std::string("expected an integer (") + what + "), found " + quoted(word()));
     return v;
   }
   // A count of things that follow: at least 0, and small enough to index them with an int.
@@ -71,14 +75,16 @@ class Tokens {
     return v;
   }
   double real(const char* what) {
-    const std::string_view w = word();
     double v = 0;
-    const auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
-    if ((ec != std::errc() && ec != std::errc::result_out_of_range) || end != w.data() + w.size())
+    at_end();
+    const std::size_t start = at_;
+    const std::errc ec = parse_real(v);
+    if (ec == std::errc() && std::isfinite(v)) return v;
+    at_ = start;
+    const std::string_view w = word();
+    if (ec != std::errc::result_out_of_range && ec != std::errc())
       fail(std::string("expected a number (") + what + "), found " + quoted(w));
-    if (ec == std::errc::result_out_of_range || !std::isfinite(v))
-      fail(std::string(what) + " " + quoted(w) + " is not a finite number");
-    return v;
+    fail(std::string(what) + " " + quoted(w) + " is not a finite number");
   }
   // A name in double quotes, which may hold spaces but not a line break.
   std::string name() {
@@ -99,12 +105,42 @@ class Tokens {
     return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
   }
   void skip_space() {
-    while (at_ < s_.body.size() && is_space(s_.body[at_])) line_ += s_.body[at_++] == '\n';
+    while (at_ < s_.body.size() && is_space(s_.body[at_])) ++at_;
+  }
+  // The next word read as a number, straight from the text: true (and past it) when the whole
+  // word is one; otherwise false, left at the word (for the message).
+  bool parse_integer(long long& v) {
+    if (at_end()) fail("ends too early");
+    const char *begin = s_.body.data() + at_, *end = s_.body.data() + s_.body.size();
+    // Most words are tags and counts of a few digits: read at most 18 (which cannot overflow)
+    // here; a sign, more digits or anything else goes to from_chars, which decides.
+    const char* digit = begin;
+    unsigned long long small = 0;
+    for (; digit < end && digit - begin < 18 && static_cast<unsigned char>(*digit - '0') < 10; ++digit)
+      small = 10 * small + static_cast<unsigned>(*digit - '0');
+    if (digit > begin && (digit == end || is_space(*digit))) {
+      v = static_cast<long long>(small);
+      at_ += static_cast<std::size_t>(digit - begin);
+      return true;
+    }
+    const auto [stop, ec] = std::from_chars(begin, end, v);
+    if (ec != std::errc() || (stop != end && !is_space(*stop))) return false;
+    at_ += static_cast<std::size_t>(stop - begin);
+    return true;
+  }
+  // As parse, for a double: the error of from_chars on the whole word (out of range or invalid),
+  // and past it only when it is a number.
+  std::errc parse_real(double& v) {
+    if (at_end()) fail("ends too early");
+    const char *begin = s_.body.data() + at_, *end = s_.body.data() + s_.body.size();
+    const auto [stop, ec] = std::from_chars(begin, end, v);
+    if (stop != end && !is_space(*stop)) return std::errc::invalid_argument;
+    if (ec == std::errc()) at_ += static_cast<std::size_t>(stop - begin);
+    return ec;
   }
 
   const Section& s_;
   std::size_t at_ = 0;
-  long line_;
 };
 
 // Node tag -> index in the file's order. Gmsh and curvemesh number the nodes 1 to N, so tags up to
@@ -194,38 +230,41 @@ class Reader {
 
  private:
   // Cuts the text into sections; checks $MeshFormat as soon as it is closed, so that a binary
-  // file is refused before its data is looked at.
+  // file is refused before its data is looked at. Only a line whose first character other than a
+  // space or tab is '$' starts or ends a section, and numbers hold no '$': the search goes from
+  // one '$' to the next and counts the lines between at once.
   void split(std::string_view text) {
     std::optional<Section> open;
     std::size_t open_body = 0;
-    long line = 0;
-    for (std::size_t at = 0; at < text.size();) {
-      std::size_t end = text.find('\n', at);
+    for (std::size_t dollar = text.find('$'); dollar != std::string_view::npos; dollar = text.find('$', dollar)) {
+      const std::size_t before = text.rfind('\n', dollar);
+      const std::size_t at = before == std::string_view::npos ? 0 : before + 1;
+      std::size_t end = text.find('\n', dollar);
       if (end == std::string_view::npos) end = text.size();
-      ++line;
+      const bool starts_line = text.substr(at, dollar - at).find_first_not_of(" \t") == std::string_view::npos;
+      dollar = end;
+      if (!starts_line) continue;
+      const auto line = [&] { return line_of(text, text.data() + at); };
       std::string_view l = text.substr(at, end - at);
       while (!l.empty() && (l.back() == '\r' || l.back() == ' ' || l.back() == '\t')) l.remove_suffix(1);
-      while (!l.empty() && (l.front() == ' ' || l.front() == '\t')) l.remove_prefix(1);
-      if (!l.empty() && l.front() == '$') {
-        if (l.substr(0, 4) == "$End") {
-          if (!open || l.substr(4) != open->name)
-            fail(line, open ? open->name : std::string(l.substr(4)), "unexpected " + quoted(l));
-          open->body = text.substr(open_body, at - open_body);
-          if (sections_.count(open->name)) fail(line, open->name, "the section appears twice");
-          if (open->name == "MeshFormat") mesh_format(*open);
-          sections_.emplace(open->name, *open);
-          open.reset();
-        } else {
-          if (open) fail(line, open->name, "not closed before " + quoted(l));
-          if (sections_.empty() && l != "$MeshFormat")
-            throw MshError("line " + std::to_string(line) + ": the file does not start with $MeshFormat");
-          open = Section{std::string(l.substr(1)), {}, line + 1};
-          open_body = std::min(end + 1, text.size());
-        }
+      l.remove_prefix(l.find('$'));
+      if (l.substr(0, 4) == "$End") {
+        if (!open || l.substr(4) != open->name)
+          fail(line(), open ? open->name : std::string(l.substr(4)), "unexpected " + quoted(l));
+        open->body = text.substr(open_body, at - open_body);
+        if (sections_.count(open->name)) fail(line(), open->name, "the section appears twice");
+        if (open->name == "MeshFormat") mesh_format(*open);
+        sections_.emplace(open->name, *open);
+        open.reset();
+      } else {
+        if (open) fail(line(), open->name, "not closed before " + quoted(l));
+        if (sections_.empty() && l != "$MeshFormat")
+          throw MshError("line " + std::to_string(line()) + ": the file does not start with $MeshFormat");
+        open = Section{std::string(l.substr(1)), {}, text};
+        open_body = std::min(end + 1, text.size());
       }
-      at = end + 1;
     }
-    if (open) fail(line, open->name, "not closed: the file ends inside it");
+    if (open) fail(line_of(text, text.data() + text.size() - 1), open->name, "not closed: the file ends inside it");
   }
 
   void mesh_format(const Section& s) {
@@ -327,6 +366,22 @@ class Reader {
     t.expect_end();
   }
 
+  // Room for the n elements of `type` a block announces, as many as the text can hold (a node tag
+  // takes 2 bytes at least): the arrays grew by copying themselves.
+  void reserve_elements(long long type, int n) {
+    const std::optional<ElementKind> kind = element_kind(type);
+    if (!kind || kind->dim == 0) return;
+    std::vector<int>& nodes = kind->dim == 2 ? mesh_.triangles : mesh_.lines;
+    std::vector<int>& physical = kind->dim == 2 ? mesh_.triangle_physical : mesh_.line_physical;
+    const std::size_t count = std::min(static_cast<std::size_t>(n), text_size_ / (2 * kind->nodes));
+    // Geometric growth still, or many small blocks would copy the arrays once each.
+    const auto grow = [](std::vector<int>& v, std::size_t more) {
+      if (v.size() + more > v.capacity()) v.reserve(std::max(v.size() + more, 2 * v.capacity()));
+    };
+    grow(nodes, count * kind->nodes);
+    grow(physical, count);
+  }
+
   // Reads the node tags of one element of `type` and files it by kind; a line keeps the further
   // physical tags of its entity (`more`) as its further groups.
   void element(Tokens& t, long long tag, long long type, int physical, std::span<const int> more = {}) {
@@ -385,6 +440,7 @@ class Reader {
       const long long entity = t.integer("entity tag");
       const long long type = t.integer("element type");
       const int n = t.count("number of elements in the block");
+      reserve_elements(type, n);
       const auto found = entity_physical_.find({dim, entity});
       const std::span<const int> tags =
           found == entity_physical_.end() ? std::span<const int>() : std::span<const int>(found->second);
@@ -420,7 +476,7 @@ class Reader {
   void finish() {
     const Section& elements = sections_.at("Elements");
     if (triangle_order_ != 0 && line_order_ != 0 && triangle_order_ != line_order_)
-      fail(elements.first_line, "Elements",
+      fail(elements.line_at(0), "Elements",
            "lines of order " + std::to_string(line_order_) + " with triangles of order " +
                std::to_string(triangle_order_));
     mesh_.order = triangle_order_ != 0 ? triangle_order_ : line_order_ != 0 ? line_order_ : 1;

@@ -265,6 +265,34 @@ TEST(HighOrderMsh, RefusesMalformedFilesWithAMessage) {
   EXPECT_THAT(error_of(head + nodes + tri), "(no error)");
 }
 
+// The line a message names is the line of the word, or of the section line, it is about: lines are
+// counted only when a message needs them, so each way of failing is tried here.
+TEST(HighOrderMsh, MessagesNameTheLineOfWhatTheyAreAbout) {
+  const std::string head = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
+  const std::string nodes = "$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n$EndNodes\n";
+  const std::string tri = "$Elements\n1\n1 2 2 4 1 1 2 3\n$EndElements\n";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {head + nodes + "$Elements\n1\n1 2 2 4 1 1 2 x\n$EndElements\n", "line 12: $Elements: expected an integer"},
+      {head + nodes + "$Elements\n1\n1 2 2 4 1 1 2 3\n", "line 12: $Elements: not closed: the file ends"},
+      {head + nodes + "$Elements\n1\n1 2 2 4 1 1 2 3", "line 12: $Elements: not closed: the file ends"},
+      {head + nodes + "$Elements\n1\n$Nodes\n$EndElements\n", "line 12: $Elements: not closed before '$Nodes'"},
+      {head + nodes + nodes + tri, "line 15: $Nodes: the section appears twice"},
+      {head + nodes + "$Elements\n2\n1 2 2 4 1 1 2 3\n2 8 2 4 1 1 2 3\n$EndElements\n",
+       "line 11: $Elements: lines of order 2 with triangles of order 1"},
+      {head + "$Nodes\n3\n1 0 0 0\n2 1. 0 0\n3 0 1e 0\n$EndNodes\n" + tri, "line 8: $Nodes: expected a number (y)"},
+      {head + "$Nodes\n3\n1 0 0 0\n\n\n2 1 0 0\n3 0 1 0 7\n$EndNodes\n" + tri,
+       "line 10: $Nodes: more data than its header announces, starting with '7'"},
+      {head + "$PhysicalNames\n1\n2 1 \"a\n$b\"\n$EndPhysicalNames\n" + nodes + tri,
+       "line 7: $PhysicalNames: not closed before '$b\"'"},
+      {"junk\n$Nodes\n" + head + nodes + tri, "line 2: the file does not start with $MeshFormat"},
+      {head + nodes + "$EndElements\n" + tri, "line 10: $Elements: unexpected '$EndElements'"},
+  };
+  for (const auto& [text, message] : cases) EXPECT_THAT(error_of(text), testing::HasSubstr(message)) << text;
+  // A '$' that does not start its line starts no section; blanks before one that does are allowed.
+  EXPECT_THAT(error_of(head + "$PhysicalNames\n1\n2 1 \"a$b\"\n$EndPhysicalNames\n" + nodes + tri), "(no error)");
+  EXPECT_THAT(error_of(head + "  \t$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n \t$EndNodes  \r\n" + tri), "(no error)");
+}
+
 // Every prefix of a valid file and many corrupted copies: each parses or throws MshError.
 TEST(HighOrderMsh, NeverCrashesOnDamagedFiles) {
   for (int version : {41, 22}) {
