@@ -75,14 +75,19 @@ class Tokens {
     return v;
   }
   double real(const char* what) {
-    double v = 0;
-    at_end();
+    if (at_end()) fail("ends too early");
     const std::size_t start = at_;
-    const std::errc ec = parse_real(v);
-    if (ec == std::errc() && std::isfinite(v)) return v;
+    const char *begin = s_.body.data() + at_, *end = s_.body.data() + s_.body.size();
+    double v = 0;
+    const auto [stop, ec] = std::from_chars(begin, end, v);
+    const bool whole = stop == end || is_space(*stop);
+    if (whole && ec == std::errc() && std::isfinite(v)) {
+      at_ += static_cast<std::size_t>(stop - begin);
+      return v;
+    }
     at_ = start;
     const std::string_view w = word();
-    if (ec != std::errc::result_out_of_range && ec != std::errc())
+    if (!whole || (ec != std::errc() && ec != std::errc::result_out_of_range))
       fail(std::string("expected a number (") + what + "), found " + quoted(w));
     fail(std::string(what) + " " + quoted(w) + " is not a finite number");
   }
@@ -128,17 +133,6 @@ class Tokens {
     at_ += static_cast<std::size_t>(stop - begin);
     return true;
   }
-  // As parse, for a double: the error of from_chars on the whole word (out of range or invalid),
-  // and past it only when it is a number.
-  std::errc parse_real(double& v) {
-    if (at_end()) fail("ends too early");
-    const char *begin = s_.body.data() + at_, *end = s_.body.data() + s_.body.size();
-    const auto [stop, ec] = std::from_chars(begin, end, v);
-    if (stop != end && !is_space(*stop)) return std::errc::invalid_argument;
-    if (ec == std::errc()) at_ += static_cast<std::size_t>(stop - begin);
-    return ec;
-  }
-
   const Section& s_;
   std::size_t at_ = 0;
 };
