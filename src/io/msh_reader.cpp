@@ -1,6 +1,7 @@
 #include "io/msh_reader.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <charconv>
 #include <climits>
 #include <cmath>
@@ -474,7 +475,11 @@ class Reader {
            "lines of order " + std::to_string(line_order_) + " with triangles of order " +
                std::to_string(triangle_order_));
     mesh_.order = triangle_order_ != 0 ? triangle_order_ : line_order_ != 0 ? line_order_ : 1;
-    if (auto error = mesh_.structure_error()) throw MshError("the mesh read is inconsistent: " + *error);
+    // Consistent by construction: every index came from node_index_, every coordinate is finite,
+    // every element has its kind's node count and orders are not mixed (test
+    // HighOrderMsh.NeverCrashesOnDamagedFiles holds parse_msh's results to structure_error() on
+    // thousands of damaged files). Scanning the arrays again took an eighth of reading a mesh.
+    assert(!mesh_.structure_error());
   }
 
   std::size_t text_size_;
