@@ -123,8 +123,8 @@ inline double approx(const ErrorBounded& x) {
 // size. The coefficients are homogeneous of degree 2 in the leaves and M is a polynomial with
 // non-negative coefficients, so with m the largest |l̂|, M ≤ m² M₁ / (1 − u)², M₁ being M with every
 // leaf 1, computed once at compile time (M̂₁, with M₁ ≤ (1 + γ_k) M̂₁). Altogether
-// |v̂ − v| ≤ k·kEps M̂₁ m² while ku ≤ 1/8; the test asks for twice that, which absorbs the rounding
-// of the bound itself.
+// |v̂ − v| ≤ k·kEps M̂₁ m² while ku ≤ 1/8; a coefficient passes when it exceeds twice that, which
+// absorbs the rounding of the bound itself.
 //
 // Underflow and overflow: the filter is used only when m lies in [2^-400, 2^400]. Then no value
 // overflows (all are below 2^820); a + or − that underflows is exact (Hauser, ACM TOPLAS 18(2),

@@ -227,7 +227,7 @@ class Reader {
   // Cuts the text into sections; checks $MeshFormat as soon as it is closed, so that a binary
   // file is refused before its data is looked at. Only a line whose first character other than a
   // space or tab is '$' starts or ends a section, and numbers hold no '$': the search goes from
-  // one '$' to the next and counts the lines between at once.
+  // one '$' to the next, each line looked at once at most.
   void split(std::string_view text) {
     std::optional<Section> open;
     std::size_t open_body = 0;
