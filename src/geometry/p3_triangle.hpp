@@ -139,10 +139,11 @@ constexpr std::array<std::array<T, 2>, 10> p3_basis_gradients(const T& u, const 
   return d;
 }
 
-// det J(u, v) from the Lagrange basis derivatives d = ∇ℓ_i(u, v): the reference formula the
-// Bernstein form is tested against.
+// det J(u, v) from the Lagrange basis derivatives: the reference formula the Bernstein form is
+// tested against.
 template <class T>
-T p3_jacobian_det_of_gradients(const P3NodesT<T>& nodes, const std::array<std::array<T, 2>, 10>& d) {
+T p3_jacobian_det(const P3NodesT<T>& nodes, const T& u, const T& v) {
+  const auto d = p3_basis_gradients(u, v);
   T xu(0), yu(0), xv(0), yv(0);
   for (int i = 0; i < 10; ++i) {
     xu += d[i][0] * nodes[i][0];
@@ -151,11 +152,6 @@ T p3_jacobian_det_of_gradients(const P3NodesT<T>& nodes, const std::array<std::a
     yv += d[i][1] * nodes[i][1];
   }
   return T(xu * yv - yu * xv);
-}
-
-template <class T>
-T p3_jacobian_det(const P3NodesT<T>& nodes, const T& u, const T& v) {
-  return p3_jacobian_det_of_gradients(nodes, p3_basis_gradients(u, v));
 }
 
 // The Bézier control net of the map (degree 3, in the Bernstein order above). Corners are
