@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "geometry/amips.hpp"
-#include "geometry/bernstein_certificate.hpp"
 #include "geometry/p2_triangle.hpp"
 #include "geometry/p3_triangle.hpp"
+#include "static_filter_cases.hpp"
 
 namespace curvemesh::geometry {
 namespace {
@@ -273,60 +273,22 @@ TEST(P2Certify, AgreesWithTheP3CertificateAndInDoublesAtAnyScale) {
   EXPECT_GT(subdivided, 20);
 }
 
-// The static filter on P2 elements whose smallest coefficient is within rounding of 0 (the P3
-// test's construction): middle node 3 moved to where the computed coefficient changes sign, then
-// a few units in the last place either way. Every element the filter accepts has all its exact
-// coefficients positive, and every computed coefficient lies within the bound it doubles.
+// The static filter on P2 elements near a sign change (static_filter_cases.hpp), at several scales
+// and positions; it fails without the bound.
 TEST(P2Certify, StaticFilterAcceptsOnlyProvenCoefficients) {
   const auto bernstein = [](const auto& nodes) { return p2_jacobian_det_bernstein(nodes); };
-  constexpr auto unit = detail::unit_error_bounds<6, decltype(bernstein)>();
   std::mt19937 rng(13);
   std::uniform_real_distribution<double> noise(-0.1, 0.1);
-  int accepted = 0, nonpositive = 0;
-  const auto tally = [&](const P2Nodes& n) {
-    P2NodesT<double> local;
-    P2NodesT<mpq_class> exact_local;
-    double m = 0;
-    for (int i = 0; i < 6; ++i)
-      for (int d = 0; d < 2; ++d) {
-        local[i][d] = n[i][d] - n[0][d];
-        m = std::max(m, std::abs(local[i][d]));
-        exact_local[i][d] = mpq_class(n[i][d]) - mpq_class(n[0][d]);
-      }
-    const auto exact = p2_jacobian_det_bernstein(exact_local);
-    const auto computed = p2_jacobian_det_bernstein(local);
-    for (std::size_t i = 0; i < exact.size(); ++i)
-      EXPECT_LE(abs(mpq_class(computed[i]) - exact[i]), mpq_class(unit[i]) * mpq_class(m) * mpq_class(m));
-    const bool positive = std::all_of(exact.begin(), exact.end(), [](const mpq_class& x) { return sgn(x) > 0; });
-    nonpositive += !positive;
-    if (!detail::positive_by_static_bound(local, bernstein)) return;
-    ++accepted;
-    EXPECT_TRUE(positive);
-  };
+  testing_support::FilterTally tally;
   for (int trial = 0; trial < 120; ++trial) {
     P2Nodes n = p2_straight_nodes(Vec2(0, 0), Vec2(1, 0), Vec2(0, 1));
     for (int i = 3; i < 6; ++i) n[i] += Vec2(noise(rng), noise(rng));
     n = transformed(n, std::ldexp(1.0, 3 * (trial % 12) - 18), trial % 3 ? Vec2(1e5 * noise(rng), 3.5) : Vec2::Zero());
-    tally(n);
-    if (certify_jacobian(n).verdict != JacobianVerdict::positive) continue;
-    const Vec2 side = n[2] - n[0], away(-side.y(), side.x());  // moving node 3 along it folds corner 0
-    const auto smallest = [&](double t) {
-      P2Nodes e = n;
-      e[3] += t * away;
-      return certify_jacobian(e).min_coefficient;
-    };
-    double lo = 0, hi = 1;
-    while (smallest(hi) > 0) hi *= 2;
-    for (int i = 0; i < 80; ++i) (smallest(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
-    for (int ulps = -12; ulps <= 12; ++ulps) {
-      P2Nodes e = n;
-      e[3] += lo * away;
-      for (int d = 0; d < 2; ++d) e[3][d] += ulps * (std::nextafter(e[3][d], INFINITY) - e[3][d]);
-      tally(e);
-    }
+    testing_support::tally_around_sign_change(n, bernstein, tally);
+    ASSERT_FALSE(HasFatalFailure()) << "trial " << trial;
   }
-  EXPECT_GT(nonpositive, 300);
-  EXPECT_GT(accepted, 100);
+  EXPECT_GT(tally.nonpositive, 300);
+  EXPECT_GT(tally.accepted, 100);
 }
 
 TEST(P2Amips, IsTheEnergyOfTheSameMapWrittenAsP3) {

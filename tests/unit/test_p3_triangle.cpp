@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "geometry/amips.hpp"
-#include "geometry/bernstein_certificate.hpp"
 #include "geometry/p3_triangle.hpp"
+#include "static_filter_cases.hpp"
 
 namespace curvemesh::geometry {
 namespace {
@@ -330,71 +330,21 @@ TEST(P3Certify, UnderflowAndOverflowLeaveTheElementUndecided) {
         << scale;
 }
 
-// The static filter (bernstein_certificate.hpp) on elements whose smallest coefficient is within
-// rounding of 0: a curved element's node 3 is moved, at several scales and positions, to where the
-// computed coefficient changes sign, then a few units in the last place either way, so that the
-// exact and computed signs disagree often. The filter must decline every element whose exact
-// coefficients are not all positive, and each computed coefficient must lie within the bound the
-// filter doubles, k·kEps M̂₁ m², of the exact one. A filter with no bound, or one 10⁵ times too
-// small, accepts some of them.
-struct FilterTally {
-  int accepted = 0, nonpositive = 0, computed_positive_but_not = 0;
-};
-
-void tally_static_filter(const P3Nodes& n, FilterTally& tally) {
-  const auto bernstein = [](const auto& nodes) { return p3_jacobian_det_bernstein(nodes); };
-  constexpr auto unit = detail::unit_error_bounds<10, decltype(bernstein)>();
-  P3NodesT<double> local;
-  P3NodesT<mpq_class> exact_local;
-  double m = 0;
-  for (int i = 0; i < 10; ++i)
-    for (int d = 0; d < 2; ++d) {
-      local[i][d] = n[i][d] - n[0][d];
-      m = std::max(m, std::abs(local[i][d]));
-      exact_local[i][d] = mpq_class(n[i][d]) - mpq_class(n[0][d]);
-    }
-  const auto exact = p3_jacobian_det_bernstein(exact_local);
-  const auto computed = p3_jacobian_det_bernstein(local);
-  for (std::size_t i = 0; i < exact.size(); ++i)
-    ASSERT_LE(abs(mpq_class(computed[i]) - exact[i]), mpq_class(unit[i]) * mpq_class(m) * mpq_class(m));
-  const bool positive = std::all_of(exact.begin(), exact.end(), [](const mpq_class& x) { return sgn(x) > 0; });
-  tally.nonpositive += !positive;
-  tally.computed_positive_but_not +=
-      !positive && std::all_of(computed.begin(), computed.end(), [](double x) { return x > 0; });
-  if (!detail::positive_by_static_bound(local, bernstein)) return;
-  ++tally.accepted;
-  ASSERT_TRUE(positive);
-}
-
+// The static filter on P3 elements near a sign change (static_filter_cases.hpp), at several
+// scales and positions. A filter with no bound, or one 10⁵ times too small, accepts some of them.
 TEST(P3Certify, StaticFilterAcceptsOnlyProvenCoefficients) {
+  const auto bernstein = [](const auto& nodes) { return p3_jacobian_det_bernstein(nodes); };
   std::mt19937 rng(12);
   std::uniform_real_distribution<double> noise(-0.05, 0.05);
-  FilterTally tally;
+  testing_support::FilterTally tally;
   for (int trial = 0; trial < 120; ++trial) {
     const double scale = std::ldexp(1.0, 3 * (trial % 12) - 18);
     const Vec2 shift = trial % 3 == 0 ? Vec2::Zero() : Vec2(1e5 * noise(rng), -1e5 * noise(rng));
     P3Nodes n = arc_element(0.1);
     for (auto& p : n) p += Vec2(noise(rng), noise(rng));
     n = transformed(n, scale, shift);
-    const Vec2 side = n[2] - n[0], away(-side.y(), side.x());  // moving node 3 along it folds corner 0
-    const auto corner = [&](double t) {
-      P3Nodes m = n;
-      m[3] += t * away;
-      return certify_jacobian(m).min_coefficient;  // the corner's value is at most that
-    };
-    tally_static_filter(n, tally);
-    if (!(certify_jacobian(n).verdict == JacobianVerdict::positive)) continue;
-    double lo = 0, hi = 1;
-    while (corner(hi) > 0) hi *= 2;
-    for (int i = 0; i < 80; ++i) (corner(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
-    P3Nodes m = n;
-    m[3] += lo * away;
-    for (int ulps = -12; ulps <= 12; ++ulps) {
-      P3Nodes e = m;
-      for (int d = 0; d < 2; ++d) e[3][d] = m[3][d] + ulps * (std::nextafter(m[3][d], INFINITY) - m[3][d]);
-      tally_static_filter(e, tally);
-      ASSERT_FALSE(HasFatalFailure()) << "trial " << trial << " ulps " << ulps;
-    }
+    testing_support::tally_around_sign_change(n, bernstein, tally);
+    ASSERT_FALSE(HasFatalFailure()) << "trial " << trial;
   }
   EXPECT_GT(tally.nonpositive, 300);                // the cases that matter are there,
   EXPECT_GT(tally.computed_positive_but_not, 30);   // many of them computed all positive,
