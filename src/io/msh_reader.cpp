@@ -79,6 +79,7 @@ class Tokens {
     if (at_end()) fail("ends too early");
     const std::size_t start = at_;
     const char *begin = s_.body.data() + at_, *end = s_.body.data() + s_.body.size();
+    if (const auto number = small_whole_number(begin, end)) return *number;
     double v = 0;
     const auto [stop, ec] = std::from_chars(begin, end, v);
     const bool whole = stop == end || is_space(*stop);
@@ -112,6 +113,21 @@ class Tokens {
   }
   void skip_space() {
     while (at_ < s_.body.size() && is_space(s_.body[at_])) ++at_;
+  }
+  // A word of at most 15 digits, after an optional minus, read here: every z of a planar mesh is
+  // one ("0"). Below 10^15 < 2^53 its value is an exact double, which is what from_chars gives
+  // for it too (the correctly rounded value); the minus is applied to the double, so "-0" is -0.
+  // Anything else: nullopt, and from_chars reads it.
+  std::optional<double> small_whole_number(const char* begin, const char* end) {
+    const char* digit = begin + (*begin == '-');
+    const char* first = digit;
+    unsigned long long v = 0;
+    for (; digit < end && digit - first < 15 && static_cast<unsigned char>(*digit - '0') < 10; ++digit)
+      v = 10 * v + static_cast<unsigned>(*digit - '0');
+    if (digit == first || (digit != end && !is_space(*digit))) return std::nullopt;
+    at_ += static_cast<std::size_t>(digit - begin);
+    const double magnitude = static_cast<double>(v);
+    return *begin == '-' ? -magnitude : magnitude;
   }
   // The next word read as a number, straight from the text: true (and past it) when the whole
   // word is one; otherwise false, left at the word (for the message).

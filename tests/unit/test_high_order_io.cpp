@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <bit>
+#include <charconv>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -223,6 +226,30 @@ std::string error_of(const std::string& text) {
     return e.what();
   }
   return "(no error)";
+}
+
+// Coordinates that are whole numbers are read without from_chars (every z of a planar mesh is
+// "0"); each must be the double from_chars gives for the same word, bit for bit, sign of zero
+// included, and a word that is not one must still reach from_chars and its message.
+TEST(HighOrderMsh, WholeNumberCoordinatesAreTheValuesFromCharsGives) {
+  const std::vector<std::string> words = {"0", "-0", "7", "-7", "000000000000012", "999999999999999",
+                                          "-999999999999999", "1234567890123456", "9007199254740993",
+                                          "12345678901234567890123", "5.", "-0.0", "3e2"};
+  for (const std::string& w : words) {
+    const std::string text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n1\n1 " + w + " " + w +
+                             " 0\n$EndNodes\n$Elements\n0\n$EndElements\n";
+    double expected = 0;
+    ASSERT_EQ(std::from_chars(w.data(), w.data() + w.size(), expected).ec, std::errc()) << w;
+    const HighOrderMesh m = parse_msh(text);
+    ASSERT_EQ(m.nodes.size(), 1u) << w;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(m.nodes[0].x()), std::bit_cast<std::uint64_t>(expected)) << w;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(m.nodes[0].y()), std::bit_cast<std::uint64_t>(expected)) << w;
+  }
+  for (const std::string w : {"-", "--1", "1-", "12a", "+5"}) {
+    const std::string text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n1\n1 " + w +
+                             " 0 0\n$EndNodes\n$Elements\n0\n$EndElements\n";
+    EXPECT_NE(error_of(text).find("expected a number (x), found '" + w + "'"), std::string::npos) << w;
+  }
 }
 
 TEST(HighOrderMsh, RefusesMalformedFilesWithAMessage) {
