@@ -215,6 +215,7 @@ class Outliner {
   void corner(Chain& chain, const Vec2& p, const Vec2& in, const Vec2& out, const Vec2& to,
               double room) const;
   bool meet_inside(CubicBezier& last, CubicBezier& next, const Vec2& in, const Vec2& out) const;
+  bool meet_at_miter(CubicBezier& last, CubicBezier& next, const Vec2& p, const Vec2& in, const Vec2& out) const;
   void cap(Chain& chain, const Vec2& p, const Vec2& direction, const Vec2& to) const;
   void arc(Chain& chain, const Vec2& centre, const Vec2& to, double sweep) const;
   void dot(const Vec2& p, std::vector<Subpath>& out) const;
@@ -349,6 +350,26 @@ bool Outliner::meet_inside(CubicBezier& last, CubicBezier& next, const Vec2& in,
   return true;
 }
 
+// At a corner turning away from this side with a miter join inside its limit, the miter's point
+// is where the two straight offset pieces' lines meet: extended to it, they are the outline the
+// join would draw (the same area), without the two short lines from their ends to the point,
+// which feature processing would leave unfit and which would leave the two sides a few widths'
+// fraction apart at their ends, as if they nearly touched. False, and nothing changed, unless
+// both are straight and the join is a miter.
+bool Outliner::meet_at_miter(CubicBezier& last, CubicBezier& next, const Vec2& p, const Vec2& in,
+                             const Vec2& out) const {
+  if (!(cross(in, out) < 0) || style_.join != LineJoin::miter || !geometry::is_straight(last, tolerance_) ||
+      !geometry::is_straight(next, tolerance_))
+    return false;
+  const double cos_half = std::sqrt(std::max(0.0, (1 + in.dot(out)) / 2));
+  if (!(cos_half > 0 && 1 / cos_half <= style_.miter_limit)) return false;
+  const Vec2 a = (last.p[3] - p) / d_, b = (next.p[0] - p) / d_;  // as corner() computes the point
+  const Vec2 m = p + d_ * (a + b) / (1 + a.dot(b));
+  last = CubicBezier::line(last.p[0], m);
+  next = CubicBezier::line(m, next.p[3]);
+  return true;
+}
+
 // Appends one offset run after a corner at p (or at a cusp of the curve): the pieces continue the
 // chain directly when its end is within the tolerance of their start (a smooth joint).
 void Outliner::append(Chain& chain, const geometry::OffsetRun& run, const Vec2& p, const Vec2& in,
@@ -361,7 +382,8 @@ void Outliner::append(Chain& chain, const geometry::OffsetRun& run, const Vec2& 
       pieces.front().p[1] += from - pieces.front().p[0];
       pieces.front().p[0] = from;
       first_continues = continues;
-    } else if (!meet_inside(chain.curves.back(), pieces.front(), in, out)) {
+    } else if (!meet_inside(chain.curves.back(), pieces.front(), in, out) &&
+               !meet_at_miter(chain.curves.back(), pieces.front(), p, in, out)) {
       corner(chain, p, in, out, pieces.front().p[0], room);
     }
   }
@@ -394,7 +416,8 @@ Chain Outliner::side(const std::vector<CubicBezier>& segments, const std::vector
       CubicBezier& last = chain.curves.back();
       last.p[2] += start - last.p[3];
       last.p[3] = start;
-    } else if (meet_inside(chain.curves.back(), chain.curves.front(), in, first_out)) {
+    } else if (meet_inside(chain.curves.back(), chain.curves.front(), in, first_out) ||
+               meet_at_miter(chain.curves.back(), chain.curves.front(), segments.front().p[0], in, first_out)) {
       chain.continues.front() = false;
     } else {
       corner(chain, segments.front().p[0], in, first_out, start,
