@@ -7,11 +7,15 @@
 //    by at most π/2·μ of its polyline (consecutive pieces, and the pieces of a bend tighter than
 //    μ: one connected component in the μ-ball), unless the curve folds back between them (a
 //    cusp sharper than the junction angle, or the two pieces pointing in opposite directions),
-//    and
 //  - pieces that share an endpoint exactly (a path's corners, shapes that touch at a vertex)
 //    and meet there at an angle of at least the junction angle (default α = 10°), so that a
 //    triangle with minimal angle α fits between them. Both their chords and their curves (the
-//    end tangents, along which curved edges leave the point) must meet at that angle.
+//    end tangents, along which curved edges leave the point) must meet at that angle, and
+//  - with strokes as areas (Lengths::straight_crossings), pieces of two straight sections that
+//    cross each other at the junction angle or more: the same X as two pairs of pieces sharing
+//    the crossing as an endpoint. A stroke's band has two sides, so the bands of two crossing
+//    strokes cross four times, within a width of one another; a piece left secondary there is
+//    followed only within ε, about that width, and the painted area loses or gains the band.
 // Pieces are visited by decreasing length of their curve section (long features first), then
 // along the section; a piece in conflict with an already primary piece becomes secondary.
 #include <CGAL/box_intersection_d.h>
@@ -63,6 +67,23 @@ double angle_between(const Vec2& u, const Vec2& v) {
   return std::atan2(std::abs(cross(u, v)), u.dot(v));
 }
 
+// Whether two straight sections cross, each passing strictly through the other at least μ from
+// its ends, at an angle of at least the junction angle. Near the crossing their pieces come within μ of one another, but
+// what lies in a μ-ball there is one connected component, an X whose four wedges are at least
+// that angle (Definition 3.1, as at a shared endpoint), and away from it two lines only diverge.
+bool straight_sections_cross(const CurveSection& s, const CurveSection& t, const Lengths& len) {
+  if (!s.straight || !t.straight) return false;
+  const Vec2 u = s.line_b - s.line_a, v = t.line_b - t.line_a;
+  const double a = cross(u, t.line_a - s.line_a), b = cross(u, t.line_b - s.line_a);
+  const double c = cross(v, s.line_a - t.line_a), e = cross(v, s.line_b - t.line_a);
+  if (!(((a > 0 && b < 0) || (a < 0 && b > 0)) && ((c > 0 && e < 0) || (c < 0 && e > 0)))) return false;
+  // At least μ from every end: a line stopping just past another leaves a stub shorter than μ
+  // that no edge of the mesh could be.
+  const double along_t = a / (a - b) * v.norm(), along_s = c / (c - e) * u.norm();
+  if (std::min({along_t, v.norm() - along_t, along_s, u.norm() - along_s}) < len.mu) return false;
+  const double angle = angle_between(u, v);
+  return std::min(angle, std::numbers::pi - angle) >= len.junction_angle_rad;
+}
 
 }  // namespace
 
@@ -115,6 +136,7 @@ static bool in_conflict(const Discretized& d, int i, int j, const Lengths& len) 
     return angle_between(p_end.leaving, q_end.leaving) < len.junction_angle_rad;
   }
   if (shared_count > 1) return true;  // the same chord twice
+  if (len.straight_crossings && straight_sections_cross(d.sections[p.section], d.sections[q.section], len)) return false;
   return segment_distance(p.a, p.b, q.a, q.b) < len.mu;
 }
 
