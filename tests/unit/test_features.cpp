@@ -148,6 +148,14 @@ TEST(Features, StraightSectionsCrossingStayPrimaryWithStrokesAsAreas) {
   EXPECT_GE(count(process(crossing(30, -short_of), areas), Kind::secondary), 1);
   // Crossing it and stopping μ/3 past it: a stub no edge could be.
   EXPECT_GE(count(process(crossing(30, 0.05), areas), Kind::secondary), 1);
+  // A third line through the same point: the crossings coincide, and a piece must go.
+  svg::FeatureSoup three = x30;
+  three.curves.push_back(three.curves[1]);
+  three.curves.back().bezier = CubicBezier::line({50, 0}, {50, 100});
+  EXPECT_GE(count(process(three, areas), Kind::secondary), 1);
+  // Further apart than μ, three crossings are each an X of their own.
+  three.curves.back().bezier = CubicBezier::line({60, 0}, {60, 100});
+  EXPECT_EQ(count(process(three, areas), Kind::secondary), 0);
 }
 
 namespace {
