@@ -157,8 +157,9 @@ static Verdict in_conflict(const Discretized& d, int i, int j, const Lengths& le
 // μ: three lines through nearly one point, or a line drawn twice across another, would leave the
 // mesh edges far shorter than μ between the crossings, which no certified curved triangle may
 // need. Those pairs are in conflict after all, as the paper's rule has them.
-std::vector<std::pair<int, int>> crowded_crossings(const Discretized& d, const std::vector<std::pair<int, int>>& pairs,
-                                                   const Lengths& len) {
+static std::vector<std::pair<int, int>> crowded_crossings(const Discretized& d,
+                                                          const std::vector<std::pair<int, int>>& pairs,
+                                                          const Lengths& len) {
   // Each pair of sections once, with its crossing.
   std::map<std::pair<int, int>, Vec2> at;
   for (const auto& [i, j] : pairs) {
