@@ -1,8 +1,8 @@
 #include "geometry/p3_triangle.hpp"
 
-#include <cstring>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <vector>
 

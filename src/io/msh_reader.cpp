@@ -114,20 +114,27 @@ class Tokens {
   void skip_space() {
     while (at_ < s_.body.size() && is_space(s_.body[at_])) ++at_;
   }
+  // Where a word of 1 to `most` decimal digits from `begin` ends (its value in `v`), or nullptr
+  // when the word is anything else (more digits, a sign, a point).
+  static const char* whole_digits(const char* begin, const char* end, int most, unsigned long long& v) {
+    const char* digit = begin;
+    v = 0;
+    for (; digit < end && digit - begin < most && static_cast<unsigned char>(*digit - '0') < 10; ++digit)
+      v = 10 * v + static_cast<unsigned>(*digit - '0');
+    return digit > begin && (digit == end || is_space(*digit)) ? digit : nullptr;
+  }
   // A word of at most 15 digits, after an optional minus, read here: every z of a planar mesh is
   // one ("0"). Below 10^15 < 2^53 its value is an exact double, which is what from_chars gives
   // for it too (the correctly rounded value); the minus is applied to the double, so "-0" is -0.
   // Anything else: nullopt, and from_chars reads it.
   std::optional<double> small_whole_number(const char* begin, const char* end) {
-    const char* digit = begin + (*begin == '-');
-    const char* first = digit;
+    const bool minus = *begin == '-';
     unsigned long long v = 0;
-    for (; digit < end && digit - first < 15 && static_cast<unsigned char>(*digit - '0') < 10; ++digit)
-      v = 10 * v + static_cast<unsigned>(*digit - '0');
-    if (digit == first || (digit != end && !is_space(*digit))) return std::nullopt;
-    at_ += static_cast<std::size_t>(digit - begin);
+    const char* stop = whole_digits(begin + minus, end, 15, v);
+    if (!stop) return std::nullopt;
+    at_ += static_cast<std::size_t>(stop - begin);
     const double magnitude = static_cast<double>(v);
-    return *begin == '-' ? -magnitude : magnitude;
+    return minus ? -magnitude : magnitude;
   }
   // The next word read as a number, straight from the text: true (and past it) when the whole
   // word is one; otherwise false, left at the word (for the message).
@@ -136,13 +143,10 @@ class Tokens {
     const char *begin = s_.body.data() + at_, *end = s_.body.data() + s_.body.size();
     // Most words are tags and counts of a few digits: read at most 18 (which cannot overflow)
     // here; a sign, more digits or anything else goes to from_chars, which decides.
-    const char* digit = begin;
     unsigned long long small = 0;
-    for (; digit < end && digit - begin < 18 && static_cast<unsigned char>(*digit - '0') < 10; ++digit)
-      small = 10 * small + static_cast<unsigned>(*digit - '0');
-    if (digit > begin && (digit == end || is_space(*digit))) {
+    if (const char* stop = whole_digits(begin, end, 18, small)) {
       v = static_cast<long long>(small);
-      at_ += static_cast<std::size_t>(digit - begin);
+      at_ += static_cast<std::size_t>(stop - begin);
       return true;
     }
     const auto [stop, ec] = std::from_chars(begin, end, v);
