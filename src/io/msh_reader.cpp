@@ -45,61 +45,56 @@ std::string quoted(std::string_view word) {
 // The whitespace-separated words of a section.
 class Tokens {
  public:
-  explicit Tokens(const Section& s) : s_(s) {}
+  explicit Tokens(const Section& s) : s_(s), at_(s.body.data()), end_(s.body.data() + s.body.size()) {}
 
-  [[noreturn]] void fail(const std::string& message) const { io::fail(s_.line_at(at_), s_.name, message); }
+  [[noreturn]] void fail(const std::string& message) const {
+    io::fail(s_.line_at(static_cast<std::size_t>(at_ - s_.body.data())), s_.name, message);
+  }
 
   bool at_end() {
     skip_space();
-    return at_ >= s_.body.size();
+    return at_ == end_;
   }
   std::string_view word() {
-    if (at_end()) fail("ends too early");
-    const std::size_t start = at_;
-    while (at_ < s_.body.size() && !is_space(s_.body[at_])) ++at_;
-    return s_.body.substr(start, at_ - start);
+    if (at_end()) ends_early();
+    const char* start = at_;
+    while (at_ != end_ && !is_space(*at_)) ++at_;
+    return {start, static_cast<std::size_t>(at_ - start)};
   }
   long long integer(const char* what) {
     long long v = 0;
-    if (!parse_integer(v)) fail(std::string("expected an integer (") + what + "), found " + quoted(word()));
+    if (!parse_integer(v)) not_an_integer(what);
     return v;
   }
   // A count of things that follow: at least 0, and small enough to index them with an int.
   int count(const char* what) {
     const long long v = integer(what);
-    if (v < 0 || v > INT_MAX) fail(std::string(what) + " " + std::to_string(v) + " is out of range");
+    if (v < 0 || v > INT_MAX) out_of_range(what, v, "is out of range");
     return static_cast<int>(v);
   }
   long long positive(const char* what) {
     const long long v = integer(what);
-    if (v <= 0) fail(std::string(what) + " " + std::to_string(v) + " is not positive");
+    if (v <= 0) out_of_range(what, v, "is not positive");
     return v;
   }
   double real(const char* what) {
-    if (at_end()) fail("ends too early");
-    const std::size_t start = at_;
-    const char *begin = s_.body.data() + at_, *end = s_.body.data() + s_.body.size();
-    if (const auto number = small_whole_number(begin, end)) return *number;
+    if (at_end()) ends_early();
+    if (const auto number = small_whole_number()) return *number;
     double v = 0;
-    const auto [stop, ec] = std::from_chars(begin, end, v);
-    const bool whole = stop == end || is_space(*stop);
+    const auto [stop, ec] = std::from_chars(at_, end_, v);
+    const bool whole = stop == end_ || is_space(*stop);
     if (whole && ec == std::errc() && std::isfinite(v)) {
-      at_ += static_cast<std::size_t>(stop - begin);
+      at_ = stop;
       return v;
     }
-    at_ = start;
-    const std::string_view w = word();
-    if (!whole || (ec != std::errc() && ec != std::errc::result_out_of_range))
-      fail(std::string("expected a number (") + what + "), found " + quoted(w));
-    fail(std::string(what) + " " + quoted(w) + " is not a finite number");
+    not_a_real(what, whole && (ec == std::errc() || ec == std::errc::result_out_of_range));
   }
   // A name in double quotes, which may hold spaces but not a line break.
   std::string name() {
-    if (at_end() || s_.body[at_] != '"') fail("expected a name in double quotes");
-    const std::size_t close = s_.body.find_first_of("\"\n", at_ + 1);
-    if (close == std::string_view::npos || s_.body[close] != '"')
-      fail("a name has no closing quote on its line");
-    std::string out(s_.body.substr(at_ + 1, close - at_ - 1));
+    if (at_end() || *at_ != '"') fail("expected a name in double quotes");
+    const char* close = std::find_if(at_ + 1, end_, [](char c) { return c == '"' || c == '\n'; });
+    if (close == end_ || *close != '"') fail("a name has no closing quote on its line");
+    std::string out(at_ + 1, close);
     at_ = close + 1;
     return out;
   }
@@ -108,54 +103,70 @@ class Tokens {
   }
 
  private:
-  static bool is_space(char c) {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
+  // The messages, out of the way of the reading: building them in line made every number's call
+  // set up a frame for strings it almost never needs (a tenth of reading a mesh).
+  [[noreturn, gnu::cold, gnu::noinline]] void ends_early() const { fail("ends too early"); }
+  [[noreturn, gnu::cold, gnu::noinline]] void out_of_range(const char* what, long long v,
+                                                           const char* why) const {
+    fail(std::string(what) + " " + std::to_string(v) + " " + why);
   }
+  [[noreturn, gnu::cold, gnu::noinline]] void not_an_integer(const char* what) {
+    fail(std::string("expected an integer (") + what + "), found " + quoted(word()));
+  }
+  // `number`: the word is one, but too large (or small) for a double, or infinite.
+  [[noreturn, gnu::cold, gnu::noinline]] void not_a_real(const char* what, bool number) {
+    const std::string_view w = word();
+    if (!number) fail(std::string("expected a number (") + what + "), found " + quoted(w));
+    fail(std::string(what) + " " + quoted(w) + " is not a finite number");
+  }
+  // Space, or one of \t \n \v \f \r (9 to 13): what isspace means in the C locale.
+  static bool is_space(char c) { return c == ' ' || static_cast<unsigned char>(c - '\t') <= '\r' - '\t'; }
   void skip_space() {
-    while (at_ < s_.body.size() && is_space(s_.body[at_])) ++at_;
+    while (at_ != end_ && is_space(*at_)) ++at_;
   }
   // Where a word of 1 to `most` decimal digits from `begin` ends (its value in `v`), or nullptr
   // when the word is anything else (more digits, a sign, a point).
-  static const char* whole_digits(const char* begin, const char* end, int most, unsigned long long& v) {
+  const char* whole_digits(const char* begin, int most, unsigned long long& v) const {
     const char* digit = begin;
+    const char* last = end_ - begin > most ? begin + most : end_;
     v = 0;
-    for (; digit < end && digit - begin < most && static_cast<unsigned char>(*digit - '0') < 10; ++digit)
+    for (; digit != last && static_cast<unsigned char>(*digit - '0') < 10; ++digit)
       v = 10 * v + static_cast<unsigned>(*digit - '0');
-    return digit > begin && (digit == end || is_space(*digit)) ? digit : nullptr;
+    return digit != begin && (digit == end_ || is_space(*digit)) ? digit : nullptr;
   }
   // A word of at most 15 digits, after an optional minus, read here: every z of a planar mesh is
   // one ("0"). Below 10^15 < 2^53 its value is an exact double, which is what from_chars gives
   // for it too (the correctly rounded value); the minus is applied to the double, so "-0" is -0.
   // Anything else: nullopt, and from_chars reads it.
-  std::optional<double> small_whole_number(const char* begin, const char* end) {
-    const bool minus = *begin == '-';
+  std::optional<double> small_whole_number() {
+    const bool minus = *at_ == '-';
     unsigned long long v = 0;
-    const char* stop = whole_digits(begin + minus, end, 15, v);
+    const char* stop = whole_digits(at_ + minus, 15, v);
     if (!stop) return std::nullopt;
-    at_ += static_cast<std::size_t>(stop - begin);
+    at_ = stop;
     const double magnitude = static_cast<double>(v);
     return minus ? -magnitude : magnitude;
   }
   // The next word read as a number, straight from the text: true (and past it) when the whole
   // word is one; otherwise false, left at the word (for the message).
   bool parse_integer(long long& v) {
-    if (at_end()) fail("ends too early");
-    const char *begin = s_.body.data() + at_, *end = s_.body.data() + s_.body.size();
+    if (at_end()) ends_early();
     // Most words are tags and counts of a few digits: read at most 18 (which cannot overflow)
     // here; a sign, more digits or anything else goes to from_chars, which decides.
     unsigned long long small = 0;
-    if (const char* stop = whole_digits(begin, end, 18, small)) {
+    if (const char* stop = whole_digits(at_, 18, small)) {
       v = static_cast<long long>(small);
-      at_ += static_cast<std::size_t>(stop - begin);
+      at_ = stop;
       return true;
     }
-    const auto [stop, ec] = std::from_chars(begin, end, v);
-    if (ec != std::errc() || (stop != end && !is_space(*stop))) return false;
-    at_ += static_cast<std::size_t>(stop - begin);
+    const auto [stop, ec] = std::from_chars(at_, end_, v);
+    if (ec != std::errc() || (stop != end_ && !is_space(*stop))) return false;
+    at_ = stop;
     return true;
   }
   const Section& s_;
-  std::size_t at_ = 0;
+  const char* at_;   // the next character to read
+  const char* end_;  // the section's end
 };
 
 // Node tag -> index in the file's order. Gmsh and curvemesh number the nodes 1 to N, so tags up to
@@ -251,12 +262,14 @@ class Reader {
   void split(std::string_view text) {
     std::optional<Section> open;
     std::size_t open_body = 0;
-    for (std::size_t dollar = text.find('$'); dollar != std::string_view::npos; dollar = text.find('$', dollar)) {
+    for (std::size_t dollar = text.find('$'); dollar != std::string_view::npos;
+         dollar = text.find('$', dollar)) {
       const std::size_t before = text.rfind('\n', dollar);
       const std::size_t at = before == std::string_view::npos ? 0 : before + 1;
       std::size_t end = text.find('\n', dollar);
       if (end == std::string_view::npos) end = text.size();
-      const bool starts_line = text.substr(at, dollar - at).find_first_not_of(" \t") == std::string_view::npos;
+      const bool starts_line =
+          text.substr(at, dollar - at).find_first_not_of(" \t") == std::string_view::npos;
       dollar = end;
       if (!starts_line) continue;
       const auto line = [&] { return line_of(text, text.data() + at); };
@@ -279,7 +292,8 @@ class Reader {
         open_body = std::min(end + 1, text.size());
       }
     }
-    if (open) fail(line_of(text, text.data() + text.size() - 1), open->name, "not closed: the file ends inside it");
+    if (open)
+      fail(line_of(text, text.data() + text.size() - 1), open->name, "not closed: the file ends inside it");
   }
 
   void mesh_format(const Section& s) {
