@@ -7,11 +7,17 @@
 //    by at most π/2·μ of its polyline (consecutive pieces, and the pieces of a bend tighter than
 //    μ: one connected component in the μ-ball), unless the curve folds back between them (a
 //    cusp sharper than the junction angle, or the two pieces pointing in opposite directions),
-//    and
 //  - pieces that share an endpoint exactly (a path's corners, shapes that touch at a vertex)
 //    and meet there at an angle of at least the junction angle (default α = 10°), so that a
 //    triangle with minimal angle α fits between them. Both their chords and their curves (the
-//    end tangents, along which curved edges leave the point) must meet at that angle.
+//    end tangents, along which curved edges leave the point) must meet at that angle, and
+//  - with strokes as areas (Lengths::straight_crossings), pieces of two straight sections that
+//    cross each other at the junction angle or more: the same X as two pairs of pieces sharing
+//    the crossing as an endpoint. A stroke's band has two sides, so the bands of two crossing
+//    strokes cross four times, within a width of one another; a piece left secondary there is
+//    followed only within ε, about that width, and the painted area loses or gains the band.
+//    Not where another such crossing is within μ (three lines through nearly one point): the
+//    edges between them would be far shorter than μ.
 // Pieces are visited by decreasing length of their curve section (long features first), then
 // along the section; a piece in conflict with an already primary piece becomes secondary.
 #include <CGAL/box_intersection_d.h>
@@ -19,8 +25,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <numeric>
+#include <optional>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -63,11 +72,34 @@ double angle_between(const Vec2& u, const Vec2& v) {
   return std::atan2(std::abs(cross(u, v)), u.dot(v));
 }
 
+// Where two straight sections cross, each passing strictly through the other at least μ from its
+// ends, at an angle of at least the junction angle; nothing otherwise. Near the crossing their
+// pieces come within μ of one another, but what lies in a μ-ball there is one connected
+// component, an X whose four wedges are at least that angle (Definition 3.1, as at a shared
+// endpoint), and away from it two lines only diverge.
+std::optional<Vec2> straight_crossing(const CurveSection& s, const CurveSection& t, const Lengths& len) {
+  if (!s.straight || !t.straight) return std::nullopt;
+  const Vec2 u = s.line_b - s.line_a, v = t.line_b - t.line_a;
+  const double a = cross(u, t.line_a - s.line_a), b = cross(u, t.line_b - s.line_a);
+  const double c = cross(v, s.line_a - t.line_a), e = cross(v, s.line_b - t.line_a);
+  if (!(((a > 0 && b < 0) || (a < 0 && b > 0)) && ((c > 0 && e < 0) || (c < 0 && e > 0)))) return std::nullopt;
+  // At least μ from every end: a line stopping just past another leaves a stub shorter than μ
+  // that no edge of the mesh could be.
+  const double along_t = a / (a - b) * v.norm(), along_s = c / (c - e) * u.norm();
+  if (std::min({along_t, v.norm() - along_t, along_s, u.norm() - along_s}) < len.mu) return std::nullopt;
+  const double angle = angle_between(u, v);
+  if (std::min(angle, std::numbers::pi - angle) < len.junction_angle_rad) return std::nullopt;
+  return Vec2(t.line_a + a / (a - b) * v);
+}
+
+enum class Verdict : char { apart, conflict, crossing };
+Verdict verdict(bool conflict) { return conflict ? Verdict::conflict : Verdict::apart; }
 
 }  // namespace
 
-// True when pieces p and q may not both be primary.
-static bool in_conflict(const Discretized& d, int i, int j, const Lengths& len) {
+// Whether pieces p and q may both be primary: apart, in conflict, or near one another only where
+// their straight sections cross (allowed unless another crossing is within μ: see below).
+static Verdict in_conflict(const Discretized& d, int i, int j, const Lengths& len) {
   const Piece& p = d.pieces[i];
   const Piece& q = d.pieces[j];
   // One connected component inside the μ-ball (Definition 3.1): pieces of one chain (an input
@@ -87,9 +119,9 @@ static bool in_conflict(const Discretized& d, int i, int j, const Lengths& len) 
     }
     if (gap <= 0.5 * std::numbers::pi * len.mu) {
       if (first->b == second->a)
-        return angle_between(first->a - first->b, second->b - second->a) < len.junction_angle_rad ||
-               angle_between(first->leave_b, second->leave_a) < len.junction_angle_rad;
-      return (first->b - first->a).dot(second->b - second->a) <= 0;
+        return verdict(angle_between(first->a - first->b, second->b - second->a) < len.junction_angle_rad ||
+                       angle_between(first->leave_b, second->leave_a) < len.junction_angle_rad);
+      return verdict((first->b - first->a).dot(second->b - second->a) <= 0);
     }
   }
   // A shared endpoint: allowed when the pieces leave it at a wide enough angle.
@@ -110,12 +142,47 @@ static bool in_conflict(const Discretized& d, int i, int j, const Lengths& len) 
     // would leave the triangles between them, each with one curved edge, two wedges of half
     // that angle at the vertex.
     const Vec2 u = p_end.other - p_end.at, v = q_end.other - q_end.at;
-    if (u.norm() == 0 || v.norm() == 0) return true;
-    if (angle_between(u, v) < len.junction_angle_rad) return true;
-    return angle_between(p_end.leaving, q_end.leaving) < len.junction_angle_rad;
+    if (u.norm() == 0 || v.norm() == 0) return Verdict::conflict;
+    if (angle_between(u, v) < len.junction_angle_rad) return Verdict::conflict;
+    return verdict(angle_between(p_end.leaving, q_end.leaving) < len.junction_angle_rad);
   }
-  if (shared_count > 1) return true;  // the same chord twice
-  return segment_distance(p.a, p.b, q.a, q.b) < len.mu;
+  if (shared_count > 1) return Verdict::conflict;  // the same chord twice
+  if (segment_distance(p.a, p.b, q.a, q.b) >= len.mu) return Verdict::apart;
+  if (len.straight_crossings && straight_crossing(d.sections[p.section], d.sections[q.section], len))
+    return Verdict::crossing;
+  return Verdict::conflict;
+}
+
+// The pairs of pieces allowed only by their sections' crossing whose crossing has another within
+// μ: three lines through nearly one point, or a line drawn twice across another, would leave the
+// mesh edges far shorter than μ between the crossings, which no certified curved triangle may
+// need. Those pairs are in conflict after all, as the paper's rule has them.
+static std::vector<std::pair<int, int>> crowded_crossings(const Discretized& d,
+                                                          const std::vector<std::pair<int, int>>& pairs,
+                                                          const Lengths& len) {
+  // Each pair of sections once, with its crossing.
+  std::map<std::pair<int, int>, Vec2> at;
+  for (const auto& [i, j] : pairs) {
+    const int s = d.pieces[i].section, t = d.pieces[j].section;
+    const std::pair<int, int> key{std::min(s, t), std::max(s, t)};
+    if (!at.count(key)) at.emplace(key, *straight_crossing(d.sections[key.first], d.sections[key.second], len));
+  }
+  std::vector<std::pair<std::pair<int, int>, Vec2>> points(at.begin(), at.end());
+  std::vector<Box> boxes;
+  for (int k = 0; k < static_cast<int>(points.size()); ++k)
+    boxes.push_back(box_of(points[k].second, points[k].second, 0.5 * len.mu, k));
+  std::set<std::pair<int, int>> crowded;  // of sections
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+    const auto& p = points[x.info()];
+    const auto& q = points[y.info()];
+    if ((p.second - q.second).norm() < len.mu) crowded.insert(p.first), crowded.insert(q.first);
+  });
+  std::vector<std::pair<int, int>> out;
+  for (const auto& [i, j] : pairs) {
+    const int s = d.pieces[i].section, t = d.pieces[j].section;
+    if (crowded.count({std::min(s, t), std::max(s, t)})) out.emplace_back(i, j);
+  }
+  return out;
 }
 
 void tag_primary_secondary(Discretized& d, const Lengths& len) {
@@ -130,17 +197,19 @@ void tag_primary_secondary(Discretized& d, const Lengths& len) {
   // by side (the greedy below asks only whether a conflicting piece is primary, so the order of
   // the lists does not matter).
   std::vector<std::vector<int>> conflicts(n);
-  std::vector<std::pair<int, int>> block;
-  std::vector<char> conflicting;
+  std::vector<std::pair<int, int>> block, crossing;
+  std::vector<Verdict> verdicts;
   const auto decide = [&] {
-    conflicting.assign(block.size(), 0);
+    verdicts.assign(block.size(), Verdict::apart);
     base::for_each_part(
-        block.size(),
-        [&](std::size_t k) { conflicting[k] = in_conflict(d, block[k].first, block[k].second, len); }, 1024);
+        block.size(), [&](std::size_t k) { verdicts[k] = in_conflict(d, block[k].first, block[k].second, len); },
+        1024);
     for (std::size_t k = 0; k < block.size(); ++k)
-      if (conflicting[k]) {
+      if (verdicts[k] == Verdict::conflict) {
         conflicts[block[k].first].push_back(block[k].second);
         conflicts[block[k].second].push_back(block[k].first);
+      } else if (verdicts[k] == Verdict::crossing) {
+        crossing.push_back(block[k]);
       }
     block.clear();
   };
@@ -151,6 +220,10 @@ void tag_primary_secondary(Discretized& d, const Lengths& len) {
     if (block.size() == std::size_t{1} << 16) decide();
   });
   decide();
+  for (const auto& [i, j] : crowded_crossings(d, crossing, len)) {
+    conflicts[i].push_back(j);
+    conflicts[j].push_back(i);
+  }
 
   // Greedy: long sections first, pieces in order along each section.
   std::vector<int> order(d.sections.size());

@@ -92,6 +92,7 @@ Resolved resolve(const Parameters& p, double diagonal, const std::vector<double>
   l.alpha_rad = radians(p.alpha_deg);
   l.junction_angle_rad = radians(p.junction_angle_deg);
   l.features = p.features;
+  l.straight_crossings = areas;
   l.max_triangles = p.limits.max_triangles;
   r.triangulate.box_margin = std::max(p.box_margin_rel, 0.0) * r.d;
   r.triangulate.max_triangles = p.limits.max_triangles;

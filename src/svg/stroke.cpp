@@ -215,6 +215,9 @@ class Outliner {
   void corner(Chain& chain, const Vec2& p, const Vec2& in, const Vec2& out, const Vec2& to,
               double room) const;
   bool meet_inside(CubicBezier& last, CubicBezier& next, const Vec2& in, const Vec2& out) const;
+  bool meet_at_miter(CubicBezier& last, CubicBezier& next, const Vec2& p, const Vec2& in, const Vec2& out) const;
+  std::optional<Vec2> miter_point(const Vec2& p, const Vec2& in, const Vec2& out, const Vec2& from,
+                                  const Vec2& to) const;
   void cap(Chain& chain, const Vec2& p, const Vec2& direction, const Vec2& to) const;
   void arc(Chain& chain, const Vec2& centre, const Vec2& to, double sweep) const;
   void dot(const Vec2& p, std::vector<Subpath>& out) const;
@@ -292,15 +295,10 @@ void Outliner::corner(Chain& chain, const Vec2& p, const Vec2& in, const Vec2& o
       arc(chain, p, to, sweep);
       return;
     }
-    case LineJoin::miter: {
-      // SVG 2 §13.5.3: the miter's length over the width is 1/sin(θ/2), θ the angle between the
-      // segments; cos(φ/2) here, φ = π − θ the angle turned. Beyond the limit: a bevel.
-      const double cos_half = std::sqrt(std::max(0.0, (1 + in.dot(out)) / 2));
-      if (cos_half > 0 && 1 / cos_half <= style_.miter_limit)
-        chain.line_to(p + d_ * (a + b) / (1 + a.dot(b)));
-      chain.line_to(to);
+    case LineJoin::miter:
+      if (const std::optional<Vec2> tip = miter_point(p, in, out, chain.end(), to)) chain.line_to(*tip);
+      chain.line_to(to);  // beyond the limit: a bevel
       return;
-    }
     case LineJoin::bevel:
       chain.line_to(to);
       return;
@@ -349,6 +347,35 @@ bool Outliner::meet_inside(CubicBezier& last, CubicBezier& next, const Vec2& in,
   return true;
 }
 
+// At a corner turning away from this side with a miter join inside its limit, the miter's tip is
+// where the two straight offset pieces' lines meet: extended to it, they are the outline the join
+// would draw (the same area), without the two short lines from their ends to the tip, which
+// feature processing would leave unfit, the two sides ending a fraction of the width apart with
+// nothing between them. False, and nothing changed, unless both are straight and the join is a
+// miter within its limit.
+bool Outliner::meet_at_miter(CubicBezier& last, CubicBezier& next, const Vec2& p, const Vec2& in,
+                             const Vec2& out) const {
+  if (!(cross(in, out) < 0) || style_.join != LineJoin::miter || !geometry::is_straight(last, tolerance_) ||
+      !geometry::is_straight(next, tolerance_))
+    return false;
+  const std::optional<Vec2> tip = miter_point(p, in, out, last.p[3], next.p[0]);
+  if (!tip) return false;
+  last = CubicBezier::line(last.p[0], *tip);
+  next = CubicBezier::line(*tip, next.p[3]);
+  return true;
+}
+
+// The tip of a miter join at corner p, between the outer offsets' ends `from` and `to` (at d from
+// p), or nothing beyond the limit. SVG 2 §13.5.3: the miter's length over the width is
+// 1/sin(θ/2), θ the angle between the segments; cos(φ/2) here, φ = π − θ the angle turned.
+std::optional<Vec2> Outliner::miter_point(const Vec2& p, const Vec2& in, const Vec2& out, const Vec2& from,
+                                          const Vec2& to) const {
+  const double cos_half = std::sqrt(std::max(0.0, (1 + in.dot(out)) / 2));
+  if (!(cos_half > 0 && 1 / cos_half <= style_.miter_limit)) return std::nullopt;
+  const Vec2 a = (from - p) / d_, b = (to - p) / d_;  // the unit normals on the outer side
+  return p + d_ * (a + b) / (1 + a.dot(b));
+}
+
 // Appends one offset run after a corner at p (or at a cusp of the curve): the pieces continue the
 // chain directly when its end is within the tolerance of their start (a smooth joint).
 void Outliner::append(Chain& chain, const geometry::OffsetRun& run, const Vec2& p, const Vec2& in,
@@ -361,7 +388,8 @@ void Outliner::append(Chain& chain, const geometry::OffsetRun& run, const Vec2& 
       pieces.front().p[1] += from - pieces.front().p[0];
       pieces.front().p[0] = from;
       first_continues = continues;
-    } else if (!meet_inside(chain.curves.back(), pieces.front(), in, out)) {
+    } else if (!meet_inside(chain.curves.back(), pieces.front(), in, out) &&
+               !meet_at_miter(chain.curves.back(), pieces.front(), p, in, out)) {
       corner(chain, p, in, out, pieces.front().p[0], room);
     }
   }
@@ -394,7 +422,8 @@ Chain Outliner::side(const std::vector<CubicBezier>& segments, const std::vector
       CubicBezier& last = chain.curves.back();
       last.p[2] += start - last.p[3];
       last.p[3] = start;
-    } else if (meet_inside(chain.curves.back(), chain.curves.front(), in, first_out)) {
+    } else if (meet_inside(chain.curves.back(), chain.curves.front(), in, first_out) ||
+               meet_at_miter(chain.curves.back(), chain.curves.front(), segments.front().p[0], in, first_out)) {
       chain.continues.front() = false;
     } else {
       corner(chain, segments.front().p[0], in, first_out, start,

@@ -119,6 +119,45 @@ TEST(Features, JunctionRule) {
   }
 }
 
+// With strokes as areas, two straight sections crossing at the junction angle or more both stay
+// primary all along (a band's sides cross wherever two strokes do); as lines, the paper's rule
+// leaves the piece at the crossing secondary. Below the angle, where a line stops short of
+// another without crossing it, and where it stops just past it, a piece is still secondary.
+TEST(Features, StraightSectionsCrossingStayPrimaryWithStrokesAsAreas) {
+  pipeline::Parameters areas;
+  areas.strokes = Strokes::areas;
+  const auto crossing = [](double degrees, double reach) {
+    const double a = degrees * kPi / 180;
+    const Vec2 c(50, 50), u(std::cos(a), std::sin(a));
+    return soup_of({CubicBezier::line({0, 50}, {100, 50}), CubicBezier::line(c - 40 * u, c + reach * u)});
+  };
+  const auto primary_length = [](const features::Features& f) {
+    double length = 0;
+    for (const auto& s : f.sections)
+      if (s.kind == Kind::primary)
+        for (std::size_t k = 0; k + 1 < s.polyline.size(); ++k) length += (s.polyline[k + 1] - s.polyline[k]).norm();
+    return length;
+  };
+  const auto x30 = crossing(30, 40);
+  EXPECT_EQ(count(process(x30, areas), Kind::secondary), 0);
+  EXPECT_NEAR(primary_length(process(x30, areas)), 180.0, 1e-9);
+  EXPECT_GE(count(process(x30), Kind::secondary), 1);
+  EXPECT_GE(count(process(crossing(5, 40), areas), Kind::secondary), 1);
+  // Ending μ/2 before the horizontal line (μ ≈ 0.141): no crossing, a sliver if both stayed.
+  const double short_of = 0.07 / std::sin(30 * kPi / 180);
+  EXPECT_GE(count(process(crossing(30, -short_of), areas), Kind::secondary), 1);
+  // Crossing it and stopping μ/3 past it: a stub no edge could be.
+  EXPECT_GE(count(process(crossing(30, 0.05), areas), Kind::secondary), 1);
+  // A third line through the same point: the crossings coincide, and a piece must go.
+  svg::FeatureSoup three = x30;
+  three.curves.push_back(three.curves[1]);
+  three.curves.back().bezier = CubicBezier::line({50, 0}, {50, 100});
+  EXPECT_GE(count(process(three, areas), Kind::secondary), 1);
+  // Further apart than μ, three crossings are each an X of their own.
+  three.curves.back().bezier = CubicBezier::line({60, 0}, {60, 100});
+  EXPECT_EQ(count(process(three, areas), Kind::secondary), 0);
+}
+
 namespace {
 
 // The drawing of tangent_junction.hpp as a soup of cubics.

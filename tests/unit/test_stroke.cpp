@@ -370,6 +370,34 @@ TEST(StrokeOutline, JoinsAddTheirWedgesToTheArea) {
     for (const CubicBezier& c : loop.segments) EXPECT_NE(c.p[3], Vec2(10, 0));
 }
 
+// A miter join of two straight segments: the outer side's offsets are extended to the miter's
+// point and meet there, so the outline has no short lines from their ends to the point (which
+// feature processing would leave unfit, the two sides nearly touching), and the same area: the
+// polygon of the two sides, worked out here from the offset lines.
+TEST(StrokeOutline, MiterOfStraightSegmentsIsACornerOfTheOutline) {
+  const double w = 2, d = w / 2;
+  const Vec2 p0(0, 0), p1(10, 0), p2(20, 3);
+  const Vec2 out = (p2 - p1).normalized(), left(-out.y(), out.x());
+  const auto meet = [](const Vec2& a, const Vec2& u, const Vec2& b, const Vec2& v) {
+    return Vec2(a + geometry::cross(b - a, v) / geometry::cross(u, v) * u);
+  };
+  const Vec2 miter = meet({0, -d}, {1, 0}, p1 - d * left, out);  // the outer (right) side
+  const Vec2 inner = meet({0, d}, {1, 0}, p1 + d * left, out);
+  const std::vector<Vec2> polygon = {{0, -d}, miter, p2 - d * left, p2 + d * left, inner, {0, d}};
+  double area = 0;
+  for (std::size_t k = 0; k < polygon.size(); ++k)
+    area += geometry::cross(polygon[k], polygon[(k + 1) % polygon.size()]) / 2;
+  const auto loops = svg::stroke_outline(path("M 0 0 L 10 0 L 20 3"), style(w, svg::LineJoin::miter, svg::LineCap::butt));
+  ASSERT_EQ(loops.size(), 1u);
+  EXPECT_NEAR(total_area(loops), std::abs(area), 1e-9);
+  int at_miter = 0;
+  for (const CubicBezier& c : loops[0].segments) {
+    EXPECT_GT((c.p[3] - c.p[0]).norm(), d) << "a short line in the outline";  // the caps are w long
+    at_miter += (c.p[3] - miter).norm() < 1e-12;
+  }
+  EXPECT_EQ(at_miter, 1);
+}
+
 TEST(StrokeOutline, ClosedSubpathHasTwoLoopsAndNoCaps) {
   const auto loops = svg::stroke_outline(path("M 0 0 L 10 0 L 10 10 L 0 10 Z"),
                                          style(2, svg::LineJoin::miter, svg::LineCap::round));
