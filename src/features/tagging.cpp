@@ -16,8 +16,9 @@
 //    the crossing as an endpoint. A stroke's band has two sides, so the bands of two crossing
 //    strokes cross four times, within a width of one another; a piece left secondary there is
 //    followed only within ε, about that width, and the painted area loses or gains the band.
-//    Not where another such crossing is within μ (three lines through nearly one point): the
-//    edges between them would be far shorter than μ.
+//    Not where another such crossing is within μ (three lines through nearly one point), nor
+//    within μ of an end of either piece (a straight curve's even cuts into pieces can fall on a
+//    crossing): the edges between them would be far shorter than μ.
 // Pieces are visited by decreasing length of their curve section (long features first), then
 // along the section; a piece in conflict with an already primary piece becomes secondary.
 #include <CGAL/box_intersection_d.h>
@@ -148,9 +149,14 @@ static Verdict in_conflict(const Discretized& d, int i, int j, const Lengths& le
   }
   if (shared_count > 1) return Verdict::conflict;  // the same chord twice
   if (segment_distance(p.a, p.b, q.a, q.b) >= len.mu) return Verdict::apart;
-  if (len.straight_crossings && straight_crossing(d.sections[p.section], d.sections[q.section], len))
-    return Verdict::crossing;
-  return Verdict::conflict;
+  if (!len.straight_crossings) return Verdict::conflict;
+  const std::optional<Vec2> x = straight_crossing(d.sections[p.section], d.sections[q.section], len);
+  // A straight curve is cut into pieces at even steps, and a cut may fall on (or next to) the
+  // crossing: the mesh would then have both the cut and the crossing as vertices, an edge far
+  // shorter than μ between them. The crossing must be at least μ from both pieces' ends.
+  if (!x || std::min({(*x - p.a).norm(), (*x - p.b).norm(), (*x - q.a).norm(), (*x - q.b).norm()}) < len.mu)
+    return Verdict::conflict;
+  return Verdict::crossing;
 }
 
 // The pairs of pieces allowed only by their sections' crossing whose crossing has another within

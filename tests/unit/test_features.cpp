@@ -149,13 +149,30 @@ TEST(Features, StraightSectionsCrossingStayPrimaryWithStrokesAsAreas) {
   // Crossing it and stopping μ/3 past it: a stub no edge could be.
   EXPECT_GE(count(process(crossing(30, 0.05), areas), Kind::secondary), 1);
   // A third line through the same point: the crossings coincide, and a piece must go.
-  svg::FeatureSoup three = x30;
+  svg::FeatureSoup three = crossing(30, 45);
   three.curves.push_back(three.curves[1]);
   three.curves.back().bezier = CubicBezier::line({50, 0}, {50, 100});
   EXPECT_GE(count(process(three, areas), Kind::secondary), 1);
-  // Further apart than μ, three crossings are each an X of their own.
-  three.curves.back().bezier = CubicBezier::line({60, 0}, {60, 100});
+  // Further apart than μ, three crossings are each an X of their own (each well away from the
+  // even cuts of the three lines into pieces: 15 of 6.67, 15 of 6.67 and 13 of 6.54).
+  three.curves.back().bezier = CubicBezier::line({63, 0}, {63, 100});
   EXPECT_EQ(count(process(three, areas), Kind::secondary), 0);
+}
+
+// A straight curve is cut into pieces at even steps; where a cut falls within μ of a crossing
+// (here 10 pieces of 5.6 with the middle cut 0.01 past the horizontal line, μ ≈ 0.11), the mesh
+// would have the cut and the crossing as two vertices 0.01 apart: a piece must go secondary
+// there, as the paper's rule has it.
+TEST(Features, CrossingNextToACutOfAStraightCurveIsAConflict) {
+  pipeline::Parameters areas;
+  areas.strokes = Strokes::areas;
+  const auto cross_at = [](double cut_past) {
+    return soup_of({CubicBezier::line({0, 50}, {100, 50}),
+                    CubicBezier::line({60, 22 + cut_past}, {60, 78 + cut_past})});
+  };
+  EXPECT_GE(count(process(cross_at(0.01), areas), Kind::secondary), 1);
+  // The same crossing half a piece from every cut is an X: all primary.
+  EXPECT_EQ(count(process(cross_at(2.8), areas), Kind::secondary), 0);
 }
 
 namespace {
