@@ -191,7 +191,61 @@ static std::vector<std::pair<int, int>> crowded_crossings(const Discretized& d,
   return out;
 }
 
+// The cuts between pieces of straight curves that fall within μ of a crossing the rule above
+// would keep (a curve is cut at even steps, blind to what crosses it): each such cut (between
+// pieces c and c + 1, the crossing nearest it first in the pairs' order) with the crossing x.
+static std::vector<std::pair<int, Vec2>> cuts_on_crossings(const Discretized& d, const Lengths& len) {
+  std::vector<Box> boxes;
+  for (int i = 0; i < static_cast<int>(d.pieces.size()); ++i)
+    if (!d.pieces[i].unfit && d.sections[d.pieces[i].section].straight)
+      boxes.push_back(box_of(d.pieces[i].a, d.pieces[i].b, 0.5 * len.mu, i));
+  std::vector<std::pair<int, int>> pairs;
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+    base::check_pairs(pairs.size() + 1, len.max_triangles, 8, "pieces within mu of each other");
+    if (d.pieces[x.info()].section != d.pieces[y.info()].section)
+      pairs.emplace_back(std::min(x.info(), y.info()), std::max(x.info(), y.info()));
+  });
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<std::pair<int, Vec2>> cuts;
+  for (const auto& [i, j] : pairs) {
+    const std::optional<Vec2> x =
+        straight_crossing(d.sections[d.pieces[i].section], d.sections[d.pieces[j].section], len);
+    if (!x) continue;
+    for (const int k : {i, j}) {
+      const CurveSection& s = d.sections[d.pieces[k].section];
+      if (k > s.first_piece && (d.pieces[k].a - *x).norm() < len.mu) cuts.emplace_back(k - 1, *x);
+      if (k + 1 < s.first_piece + s.piece_count && (d.pieces[k].b - *x).norm() < len.mu)
+        cuts.emplace_back(k, *x);
+    }
+  }
+  std::stable_sort(cuts.begin(), cuts.end(), [](const auto& u, const auto& v) { return u.first < v.first; });
+  cuts.erase(
+      std::unique(cuts.begin(), cuts.end(), [](const auto& u, const auto& v) { return u.first == v.first; }),
+      cuts.end());
+  return cuts;
+}
+
+// With strokes as areas, such a cut is moved to the middle of the longer side of the crossing
+// between the two pieces' outer ends: the crossing then lies inside a piece, far from its ends,
+// and the X stays primary (a crossing within μ of a piece's end is a conflict: the cut and the
+// crossing would be two vertices closer than μ). The line is the same; a piece becomes up to
+// half as long again as the others, which the optimizer's sizing splits if it must.
+static void move_cuts_off_crossings(Discretized& d, const Lengths& len) {
+  for (const auto& [c, x] : cuts_on_crossings(d, len)) {
+    Piece &before = d.pieces[c], &after = d.pieces[c + 1];
+    const CurveSection& s = d.sections[before.section];
+    const Vec2 u = s.line_b - s.line_a;
+    const Vec2 cut =
+        (x - before.a).norm() > (after.b - x).norm() ? 0.5 * (before.a + x) : 0.5 * (x + after.b);
+    const double t = std::clamp((cut - s.line_a).dot(u) / u.squaredNorm(), before.t0, after.t1);
+    before.t1 = after.t0 = t;
+    before.b = after.a = s.line_a + t * u;
+    after.along = before.along + (before.b - before.a).norm();
+  }
+}
+
 void tag_primary_secondary(Discretized& d, const Lengths& len) {
+  if (len.straight_crossings) move_cuts_off_crossings(d, len);
   const int n = static_cast<int>(d.pieces.size());
   std::vector<Box> boxes;
   boxes.reserve(n);

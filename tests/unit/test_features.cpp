@@ -159,20 +159,36 @@ TEST(Features, StraightSectionsCrossingStayPrimaryWithStrokesAsAreas) {
   EXPECT_EQ(count(process(three, areas), Kind::secondary), 0);
 }
 
-// A straight curve is cut into pieces at even steps; where a cut falls within μ of a crossing
-// (here 10 pieces of 5.6 with the middle cut 0.01 past the horizontal line, μ ≈ 0.11), the mesh
-// would have the cut and the crossing as two vertices 0.01 apart: a piece must go secondary
-// there, as the paper's rule has it.
-TEST(Features, CrossingNextToACutOfAStraightCurveIsAConflict) {
+// A straight curve is cut into pieces at even steps, blind to what crosses it. Here the vertical
+// line is cut into 10 pieces of 5.6, the middle cut 0.01 past the horizontal line (μ ≈ 0.11): the
+// cut is moved to the middle of the longer side, and the X stays primary. Where the moved cut
+// lands within μ of another crossing, that one is a conflict (the cut and the crossing would be
+// two vertices 0.01 apart), and a piece goes secondary, as the paper's rule has it.
+TEST(Features, ACutOfAStraightCurveOnACrossingIsMovedOffIt) {
   pipeline::Parameters areas;
   areas.strokes = Strokes::areas;
   const auto cross_at = [](double cut_past) {
     return soup_of({CubicBezier::line({0, 50}, {100, 50}),
                     CubicBezier::line({60, 22 + cut_past}, {60, 78 + cut_past})});
   };
-  EXPECT_GE(count(process(cross_at(0.01), areas), Kind::secondary), 1);
-  // The same crossing half a piece from every cut is an X: all primary.
+  const features::Features moved = process(cross_at(0.01), areas);
+  EXPECT_EQ(count(moved, Kind::secondary), 0);
+  double vertical = 0;  // the vertical line's primary sections still cover it, cut where they meet
+  for (const auto& s : moved.sections)
+    if (s.kind == Kind::primary && s.polyline.front().x() == 60)
+      for (std::size_t k = 0; k + 1 < s.polyline.size(); ++k) {
+        vertical += (s.polyline[k + 1] - s.polyline[k]).norm();
+        if (k > 0) {
+          EXPECT_GT(std::abs(s.polyline[k].y() - 50), 1.0);
+        }
+      }
+  EXPECT_NEAR(vertical, 56, 1e-9);
   EXPECT_EQ(count(process(cross_at(2.8), areas), Kind::secondary), 0);
+  // The cut moves to 52.805 (between 50 and the piece's end, 55.61); a line crossing there.
+  svg::FeatureSoup two = cross_at(0.01);
+  two.curves.push_back(two.curves[0]);
+  two.curves.back().bezier = CubicBezier::line({0, 52.815}, {100, 52.815});
+  EXPECT_GE(count(process(two, areas), Kind::secondary), 1);
 }
 
 namespace {
