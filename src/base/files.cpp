@@ -1,6 +1,7 @@
 #include "base/files.hpp"
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/random.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -108,6 +109,21 @@ void write_in_place(const std::string& path, std::string_view content) {
   if (fd.close() != 0) throw OutputError(path + ": cannot write (" + reason(errno) + ")");
 }
 
+// A string of `size` zero bytes whose pages are mapped in one call: touching them one by one, as
+// filling the string does, costs a page fault each (1.5 µs on a virtual machine; 30 for the
+// 122 kB of a small mesh, a sixth of reading it). Where the kernel does not know the advice
+// (before Linux 5.14), the pages fault as before.
+std::string zeros_mapped_at_once(std::size_t size) {
+  std::string text;
+  text.reserve(size);
+  const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
+  const auto at = reinterpret_cast<std::uintptr_t>(text.data());
+  const std::uintptr_t first = (at + page - 1) / page * page, last = (at + size) / page * page;
+  if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE);
+  text.resize(size);
+  return text;
+}
+
 }  // namespace
 
 std::string mebibytes(std::uint64_t bytes) {
@@ -127,7 +143,7 @@ std::string read_input_file(const std::string& path, std::uint64_t max_bytes, co
                           mebibytes(size) + (limit_option.empty() ? "" : "; " + limit_option + " raises it") + ")");
   };
   if (static_cast<std::uint64_t>(st.st_size) > max_bytes) throw too_large(static_cast<std::uint64_t>(st.st_size));
-  std::string text(static_cast<std::size_t>(st.st_size), '\0');
+  std::string text = zeros_mapped_at_once(static_cast<std::size_t>(st.st_size));
   std::size_t done = 0;
   for (;;) {
     // Past the size fstat gave (the end, or a file that grows while it is read, or one whose size
