@@ -262,14 +262,12 @@ class Reader {
   void split(std::string_view text) {
     std::optional<Section> open;
     std::size_t open_body = 0;
-    for (std::size_t dollar = text.find('$'); dollar != std::string_view::npos;
-         dollar = text.find('$', dollar)) {
+    for (std::size_t dollar = text.find('$'); dollar != std::string_view::npos; dollar = text.find('$', dollar)) {
       const std::size_t before = text.rfind('\n', dollar);
       const std::size_t at = before == std::string_view::npos ? 0 : before + 1;
       std::size_t end = text.find('\n', dollar);
       if (end == std::string_view::npos) end = text.size();
-      const bool starts_line =
-          text.substr(at, dollar - at).find_first_not_of(" \t") == std::string_view::npos;
+      const bool starts_line = text.substr(at, dollar - at).find_first_not_of(" \t") == std::string_view::npos;
       dollar = end;
       if (!starts_line) continue;
       const auto line = [&] { return line_of(text, text.data() + at); };
@@ -292,8 +290,7 @@ class Reader {
         open_body = std::min(end + 1, text.size());
       }
     }
-    if (open)
-      fail(line_of(text, text.data() + text.size() - 1), open->name, "not closed: the file ends inside it");
+    if (open) fail(line_of(text, text.data() + text.size() - 1), open->name, "not closed: the file ends inside it");
   }
 
   void mesh_format(const Section& s) {
