@@ -244,6 +244,41 @@ static void move_cuts_off_crossings(Discretized& d, const Lengths& len) {
   }
 }
 
+// Isolated points within μ of a primary piece or of an earlier point are absorbed by it.
+static void absorb_isolated_points(Discretized& d, const Lengths& len) {
+  const int n = static_cast<int>(d.pieces.size());
+  std::vector<Box> point_boxes, primary_boxes;
+  for (int k = 0; k < static_cast<int>(d.points.size()); ++k)
+    point_boxes.push_back(box_of(d.points[k].p, d.points[k].p, 0.5 * len.mu, k));
+  for (int i = 0; i < n; ++i)
+    if (d.pieces[i].kind == Kind::primary) primary_boxes.push_back(box_of(d.pieces[i].a, d.pieces[i].b, 0.5 * len.mu, i));
+  std::vector<char> drop(d.points.size(), 0);
+  CGAL::box_intersection_d(point_boxes.begin(), point_boxes.end(), primary_boxes.begin(), primary_boxes.end(),
+                           [&](const Box& pt, const Box& pc) {
+                             const Piece& p = d.pieces[pc.info()];
+                             if (point_segment_distance(d.points[pt.info()].p, p.a, p.b) < len.mu) drop[pt.info()] = 1;
+                           });
+  std::vector<std::vector<int>> near(d.points.size());
+  CGAL::box_self_intersection_d(point_boxes.begin(), point_boxes.end(), [&](const Box& x, const Box& y) {
+    if ((d.points[x.info()].p - d.points[y.info()].p).norm() < len.mu) {
+      near[x.info()].push_back(y.info());
+      near[y.info()].push_back(x.info());
+    }
+  });
+  for (std::size_t k = 0; k < d.points.size(); ++k) {
+    if (drop[k]) continue;
+    for (const int other : near[k])
+      if (other < static_cast<int>(k) && !drop[other]) {
+        drop[k] = 1;
+        break;
+      }
+  }
+  std::vector<IsolatedPoint> kept;
+  for (std::size_t k = 0; k < d.points.size(); ++k)
+    if (!drop[k]) kept.push_back(d.points[k]);
+  d.points = std::move(kept);
+}
+
 void tag_primary_secondary(Discretized& d, const Lengths& len) {
   if (len.straight_crossings) move_cuts_off_crossings(d, len);
   const int n = static_cast<int>(d.pieces.size());
@@ -307,37 +342,7 @@ void tag_primary_secondary(Discretized& d, const Lengths& len) {
     }
   }
 
-  // Isolated points within μ of a primary piece or of an earlier point are absorbed by it.
-  std::vector<Box> point_boxes, primary_boxes;
-  for (int k = 0; k < static_cast<int>(d.points.size()); ++k)
-    point_boxes.push_back(box_of(d.points[k].p, d.points[k].p, 0.5 * len.mu, k));
-  for (int i = 0; i < n; ++i)
-    if (d.pieces[i].kind == Kind::primary) primary_boxes.push_back(box_of(d.pieces[i].a, d.pieces[i].b, 0.5 * len.mu, i));
-  std::vector<char> drop(d.points.size(), 0);
-  CGAL::box_intersection_d(point_boxes.begin(), point_boxes.end(), primary_boxes.begin(), primary_boxes.end(),
-                           [&](const Box& pt, const Box& pc) {
-                             const Piece& p = d.pieces[pc.info()];
-                             if (point_segment_distance(d.points[pt.info()].p, p.a, p.b) < len.mu) drop[pt.info()] = 1;
-                           });
-  std::vector<std::vector<int>> near(d.points.size());
-  CGAL::box_self_intersection_d(point_boxes.begin(), point_boxes.end(), [&](const Box& x, const Box& y) {
-    if ((d.points[x.info()].p - d.points[y.info()].p).norm() < len.mu) {
-      near[x.info()].push_back(y.info());
-      near[y.info()].push_back(x.info());
-    }
-  });
-  for (std::size_t k = 0; k < d.points.size(); ++k) {
-    if (drop[k]) continue;
-    for (const int other : near[k])
-      if (other < static_cast<int>(k) && !drop[other]) {
-        drop[k] = 1;
-        break;
-      }
-  }
-  std::vector<IsolatedPoint> kept;
-  for (std::size_t k = 0; k < d.points.size(); ++k)
-    if (!drop[k]) kept.push_back(d.points[k]);
-  d.points = std::move(kept);
+  absorb_isolated_points(d, len);
 }
 
 }  // namespace curvemesh::features::detail
