@@ -110,8 +110,8 @@ std::vector<char> domain_triangles(const Classification& c, Domain domain) {
   for (std::size_t t = 0; t < face.size(); ++t) {
     if (domain == Domain::evenodd) keep[t] = c.faces.depth[face[t]] % 2 == 1;
     if (domain == Domain::outside) keep[t] = c.faces.depth[face[t]] % 2 == 0;
-    if (domain == Domain::filled) keep[t] = c.filled.at(face[t]) >= 0;
-    if (domain == Domain::painted) keep[t] = c.visible.at(face[t]) >= 0;
+    if (domain == Domain::filled) keep[t] = c.filled.at(t) >= 0;
+    if (domain == Domain::painted) keep[t] = c.visible.at(t) >= 0;
   }
   return keep;
 }

@@ -36,18 +36,19 @@ struct Faces {
 // Faces separated by primary and secondary lines, numbered in order of their first triangle.
 Faces find_faces(const io::HighOrderMesh& mesh);
 
-// The faces, and for each the filled shape painted on top of it (regions/paint.hpp).
+// The faces, and for each triangle the filled shape painted on top of it (regions/paint.hpp): its
+// face's, unless an outline crosses the face.
 struct Classification {
   Faces faces;
-  std::vector<int> visible;  // per face: index of the topmost fill layer covering it, -1 none;
+  std::vector<int> visible;  // per triangle: index of the topmost fill layer covering it, -1 none;
                              // empty when the fills were not classified
-  std::vector<int> filled;   // per face: the topmost layer covering it that is not a stroke's
+  std::vector<int> filled;   // per triangle: the topmost layer covering it that is not a stroke's
                              // (svg::FillLayer::stroke), -1 none; as `visible` when none is
 };
 
-// Which triangles a mesh keeps: the whole box, the faces some filled shape covers (the shape as
-// it is seen, the background gone), the even–odd inside of all curves (odd depth), the faces
-// some fill or stroke paints, or the even–odd outside (even depth): the public curvemesh::Domain
+// Which triangles a mesh keeps: the whole box, the triangles some filled shape covers (the shape
+// as it is seen, the background gone), the even–odd inside of all curves (odd depth), the
+// triangles some fill or stroke paints, or the even–odd outside (even depth): the public curvemesh::Domain
 // of Parameters.
 using Domain = curvemesh::Domain;
 inline constexpr Domain kDomains[] = {Domain::box, Domain::filled, Domain::evenodd, Domain::painted,

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <exception>
 #include <map>
+#include <span>
 #include <stdexcept>
 #include <utility>
 
@@ -55,6 +56,7 @@ struct FaceSamples {
   std::vector<geometry::Vec2> points;
   geometry::Box2 box;  // of the points
   double spread = 0;   // the largest distance between the first point and another
+  bool by_majority = false;  // one triangle's: where they disagree, most of them decide
 };
 
 // The squared distance between two boxes (0 when they meet).
@@ -64,14 +66,15 @@ double squared_gap(const geometry::Box2& a, const geometry::Box2& b) {
   return dx * dx + dy * dy;
 }
 
-// Whether fill layer l covers face f. A face bounded by lines on the layer's outline lies on one
-// side of it, and every sample says the same. Where the mesh follows the outline only within ε,
-// the outline may cross the face; and as a secondary line may leave one curve for a neighbour's
-// envelope, a sample farther than ε from the outline can still lie on the side the face is not
-// (a triangle reaching into a thin shape drawn over the face). So the face is decided at its
-// sample farthest from the outline, each sample's distance bounded within a fifth of it.
+// Whether fill layer l covers the sample points s of face f. A face bounded by lines on the
+// layer's outline lies on one side of it, and every sample says the same. Where the mesh follows
+// the outline only within ε, the outline may cross the face, and the samples disagree: `split` is
+// set (classify then decides the face triangle by triangle), and the sample farthest from the
+// outline decides, each sample's distance bounded within a fifth of it. (Not the first sample
+// more than ε from it: a secondary line may leave one curve for a neighbour's envelope, so a
+// triangle can reach well into a thin shape drawn over the face.)
 bool covers(const Outline& outline, const svg::FillLayer& layer, const FaceSamples& s,
-            const ClassifyOptions& o, int l, int f) {
+            const ClassifyOptions& o, int l, int f, bool& split) {
   // Every sample outside the layer's box: wound around by none of its loops.
   if (s.points.empty() || squared_gap(s.box, layer.bounds) > 0) return false;
   // A sample farther from the outline than from every other sample says for all of them: no
@@ -106,12 +109,20 @@ bool covers(const Outline& outline, const svg::FillLayer& layer, const FaceSampl
   }
   if (side < 0) throw Undecided(l, f);
   if (!disagree) return side;
-  // The samples disagree: the one farthest from the outline decides.
+  split = true;
+  // The samples disagree: the one farthest from the outline decides, or for one triangle the
+  // side most of its samples are on (most of its area: what is painted there), ties so.
   for (std::size_t i = 0; i < n; ++i)
     if (!asked[i]) ask(i);
   std::size_t best = n;
-  for (std::size_t i = 0; i < n; ++i)
-    if (w[i].decided && (best == n || w[i].clearance > w[best].clearance)) best = i;
+  int in = 0, decided = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!w[i].decided) continue;
+    ++decided;
+    in += inside(w[i].number, layer.rule);
+    if (best == n || w[i].clearance > w[best].clearance) best = i;
+  }
+  if (s.by_majority && 2 * in != decided) return 2 * in > decided;
   return inside(w[best].number, layer.rule);
 }
 
@@ -122,6 +133,17 @@ bool too_narrow(const svg::FillLayer& layer, const ClassifyOptions& options) {
 }
 
 namespace {
+
+// The sample points of the triangles `ts`.
+FaceSamples samples_of(const io::HighOrderMesh& mesh, std::span<const int> ts) {
+  FaceSamples s;
+  for (const int t : ts) add_samples(mesh, t, s.points);
+  for (const geometry::Vec2& p : s.points) {
+    s.box.add(p);
+    s.spread = std::max(s.spread, (p - s.points[0]).norm());
+  }
+  return s;
+}
 
 // Each face's samples: its largest triangles' (ties by index: deterministic), face by face in
 // parallel.
@@ -139,63 +161,85 @@ std::vector<FaceSamples> face_samples(const io::HighOrderMesh& mesh, const Faces
         const auto count = std::min<std::size_t>(kSamples, m.size());
         std::partial_sort(m.begin(), m.begin() + count, m.end(),
                           [&](int a, int b) { return area[a] != area[b] ? area[a] > area[b] : a < b; });
-        FaceSamples& s = samples[f];
-        for (std::size_t i = 0; i < count; ++i) add_samples(mesh, m[i], s.points);
-        for (const geometry::Vec2& p : s.points) {
-          s.box.add(p);
-          s.spread = std::max(s.spread, (p - s.points[0]).norm());
-        }
+        samples[f] = samples_of(mesh, std::span<const int>(m.data(), count));
       },
       1);
   return samples;
 }
 
+// The fill layers, their outlines and clip paths, and what classify decides with them.
+class Painter {
+ public:
+  Painter(const std::vector<svg::FillLayer>& fills, const ClassifyOptions& options,
+          const std::vector<svg::ClipPath>& clips)
+      : fills_(fills), options_(options), clips_(clips), clip_outlines_(clips.size()) {
+    outlines_.reserve(fills.size());
+    for (const svg::FillLayer& layer : fills) outlines_.emplace_back(layer);
+    for (std::size_t k = 0; k < clips.size(); ++k)
+      for (const svg::FillLayer& shape : clips[k].shapes) clip_outlines_[k].emplace_back(shape);
+  }
+
+  struct Decision {
+    int visible = -1, filled = -1;
+    bool split = false;  // some outline runs between the samples
+  };
+
+  // The topmost layer covering the samples of face f: walk down the paint order, stop at the first
+  // that covers (and under a stroke, go on to the first fill that does).
+  Decision decide(const FaceSamples& s, int f) const {
+    Decision d;
+    for (int l = static_cast<int>(fills_.size()) - 1; l >= 0; --l) {
+      if ((d.visible >= 0 && fills_[l].stroke) || too_narrow(fills_[l], options_)) continue;
+      const auto& layer_clips = fills_[l].clips;
+      if (covers(outlines_[l], fills_[l], s, options_, l, f, d.split) &&
+          std::all_of(layer_clips.begin(), layer_clips.end(), [&](int k) { return in_clip(k, l, s, f, d.split); })) {
+        if (d.visible < 0) d.visible = l;
+        if (!fills_[l].stroke) {
+          d.filled = l;
+          break;
+        }
+      }
+    }
+    return d;
+  }
+
+ private:
+  // SVG 1.1 §14.3.5: what a clip path lets through is the union of its children's insides.
+  bool in_clip(int k, int l, const FaceSamples& s, int f, bool& split) const {
+    for (std::size_t i = 0; i < clips_.at(k).shapes.size(); ++i)
+      if (covers(clip_outlines_[k][i], clips_[k].shapes[i], s, options_, l, f, split)) return true;
+    return false;
+  }
+
+  const std::vector<svg::FillLayer>& fills_;
+  const ClassifyOptions& options_;
+  const std::vector<svg::ClipPath>& clips_;
+  std::vector<Outline> outlines_;
+  std::vector<std::vector<Outline>> clip_outlines_;
+};
+
 }  // namespace
 
 // Every face decided on its own, in parallel; a face that cannot be decided is reported as a
-// serial sweep would report it, the first in the faces' order.
+// serial sweep would report it, the first in the faces' order. A face an outline crosses (its
+// samples disagree: the mesh follows that outline only within ε there, as along a stroke thinner
+// than ε) is then decided triangle by triangle, each at its own samples, so that the part of the
+// face inside a thin band is painted and the rest is not; a triangle that cannot be decided alone
+// keeps its face's decision.
 Classification classify(const io::HighOrderMesh& mesh, const std::vector<svg::FillLayer>& fills,
                         const ClassifyOptions& options, const std::vector<svg::ClipPath>& clips) {
   Classification c;
   c.faces = find_faces(mesh);
   const int face_count = c.faces.count();
   const std::vector<FaceSamples> samples = face_samples(mesh, c.faces);
-  std::vector<Outline> outlines;
-  outlines.reserve(fills.size());
-  for (const svg::FillLayer& layer : fills) outlines.emplace_back(layer);
-  std::vector<std::vector<Outline>> clip_outlines(clips.size());
-  for (std::size_t k = 0; k < clips.size(); ++k)
-    for (const svg::FillLayer& shape : clips[k].shapes) clip_outlines[k].emplace_back(shape);
-  // SVG 1.1 §14.3.5: what a clip path lets through is the union of its children's insides.
-  const auto in_clip = [&](int k, int l, int f) {
-    for (std::size_t s = 0; s < clips.at(k).shapes.size(); ++s)
-      if (covers(clip_outlines[k][s], clips[k].shapes[s], samples[f], options, l, f)) return true;
-    return false;
-  };
-  c.visible.assign(face_count, -1);
-  c.filled.assign(face_count, -1);
-  // The topmost covering layer: walk down the paint order, stop at the first that covers (and
-  // under a stroke, go on to the first fill that does).
-  const auto decide = [&](int f) {
-    for (int l = static_cast<int>(fills.size()) - 1; l >= 0; --l) {
-      if ((c.visible[f] >= 0 && fills[l].stroke) || too_narrow(fills[l], options)) continue;
-      const auto& layer_clips = fills[l].clips;
-      if (covers(outlines[l], fills[l], samples[f], options, l, f) &&
-          std::all_of(layer_clips.begin(), layer_clips.end(), [&](int k) { return in_clip(k, l, f); })) {
-        if (c.visible[f] < 0) c.visible[f] = l;
-        if (!fills[l].stroke) {
-          c.filled[f] = l;
-          break;
-        }
-      }
-    }
-  };
+  const Painter painter(fills, options, clips);
+  std::vector<Painter::Decision> of_face(face_count);
   std::vector<std::exception_ptr> failed(face_count);
   base::for_each_part(
       face_count,
       [&](std::size_t f) {
         try {
-          decide(static_cast<int>(f));
+          of_face[f] = painter.decide(samples[f], static_cast<int>(f));
         } catch (...) {
           failed[f] = std::current_exception();
         }
@@ -203,6 +247,28 @@ Classification classify(const io::HighOrderMesh& mesh, const std::vector<svg::Fi
       1);
   for (const std::exception_ptr& e : failed)
     if (e) std::rethrow_exception(e);
+  const int n = mesh.triangle_count();
+  c.visible.resize(n);
+  c.filled.resize(n);
+  std::vector<int> split;  // the triangles of split faces
+  for (int t = 0; t < n; ++t) {
+    const Painter::Decision& d = of_face[c.faces.of_triangle[t]];
+    c.visible[t] = d.visible;
+    c.filled[t] = d.filled;
+    if (d.split) split.push_back(t);
+  }
+  base::for_each_part(split.size(), [&](std::size_t i) {
+    const int t = split[i];
+    try {
+      FaceSamples s = samples_of(mesh, std::span<const int>(&t, 1));
+      s.by_majority = true;
+      const Painter::Decision d = painter.decide(s, c.faces.of_triangle[t]);
+      c.visible[t] = d.visible;
+      c.filled[t] = d.filled;
+    } catch (const Undecided&) {
+      // On an outline as far as doubles can tell: its face's decision stands.
+    }
+  });
   return c;
 }
 
@@ -258,7 +324,7 @@ Painted paint(const io::HighOrderMesh& whole, const Classification& c, const svg
   const bool classified = !c.visible.empty();
   std::vector<int> triangle_layer(whole.triangle_count(), -1);
   if (classified)
-    for (int t = 0; t < whole.triangle_count(); ++t) triangle_layer[t] = c.visible[c.faces.of_triangle[t]];
+    for (int t = 0; t < whole.triangle_count(); ++t) triangle_layer[t] = c.visible[t];
 
   const io::HighOrderMesh tagged =
       tag_regions ? tag_by_region(whole, triangle_layer, keep, soup, out.regions) : whole;

@@ -7,11 +7,11 @@
 //
 // A face is bounded by feature lines on input curves, so each shape's winding number is the same
 // all over it, except where the mesh follows an outline only within ε (secondary lines) or drops
-// a piece of it (degenerate curves). There the face is decided at its sample point farthest from
-// that outline. (Not at the first point more than ε from it: a secondary line may leave one curve
-// for a neighbour's envelope, so a triangle of the face can reach well into a thin shape drawn
-// over it.) A face that lies entirely on an outline, as far as doubles can tell, is not guessed:
-// classify throws Undecided.
+// a piece of it (degenerate curves). There the face's samples disagree, and each of its triangles
+// is decided on its own, at its sample point farthest from that outline. (Not at the first point
+// more than ε from it: a secondary line may leave one curve for a neighbour's envelope, so a
+// triangle can reach well into a thin shape drawn over it.) A face that lies entirely on an
+// outline, as far as doubles can tell, is not guessed: classify throws Undecided.
 #include <stdexcept>
 #include <string>
 #include <vector>

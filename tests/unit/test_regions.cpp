@@ -192,27 +192,44 @@ TEST(Faces, AFaceWhoseSamplesAllLieOnTheOutlineIsNotGuessed) {
   EXPECT_NO_THROW(regions::classify(m, {layer_of({polygon(points)})}, o));
 }
 
-TEST(Faces, AFaceAnOutlineCrossesIsDecidedAtItsPointFarthestFromIt) {
-  // One face of two triangles that the line x + y = c of a filled half-plane (x + y < c) crosses,
-  // as where the mesh follows an outline only within ε. The samples have x + y = 1, 2 or 3.
+TEST(Faces, AFaceAnOutlineCrossesIsDecidedTriangleByTriangle) {
+  // One face of two triangles that the line of a filled half-plane crosses, as where the mesh
+  // follows an outline only within ε. Each triangle is painted where most of its samples (its
+  // centroid and the points halfway to its corners) are: what covers most of its area.
   io::HighOrderMesh m;
   m.nodes = {Vec2(0, 0), Vec2(2, 0), Vec2(2, 2), Vec2(0, 2)};
-  m.add_triangle(std::vector<int>{0, 1, 2});
-  m.add_triangle(std::vector<int>{0, 2, 3});
-  const auto half_plane = [](double c) {
+  m.add_triangle(std::vector<int>{0, 1, 2});  // samples at x = 4/3, 2/3, 5/3, 5/3; x + y = 2, 1, 2, 3
+  m.add_triangle(std::vector<int>{0, 2, 3});  // samples at x = 2/3, 1/3, 4/3, 1/3; x + y = 2, 1, 3, 2
+  const auto polygon = [](std::vector<Vec2> ps) {
     svg::Subpath s;
-    s.start = Vec2(c + 3, -3);
-    s.segments = {CubicBezier::line(Vec2(c + 3, -3), Vec2(-3, c + 3)), CubicBezier::line(Vec2(-3, c + 3), Vec2(-9, -9)),
-                  CubicBezier::line(Vec2(-9, -9), s.start)};
+    s.start = ps[0];
+    for (std::size_t i = 0; i < ps.size(); ++i) s.segments.push_back(CubicBezier::line(ps[i], ps[(i + 1) % ps.size()]));
     return s;
   };
+  const auto below = [&](double c) {  // x + y < c
+    return polygon({Vec2(c + 3, -3), Vec2(-3, c + 3), Vec2(-9, -9)});
+  };
+  const auto right_of = [&](double c) {  // x > c
+    return polygon({Vec2(c, -9), Vec2(9, -9), Vec2(9, 9), Vec2(c, 9)});
+  };
   regions::ClassifyOptions o;
-  o.clearance = 10;  // more than any sample has: every one is tried, the farthest decides
+  o.clearance = 10;  // more than any sample has: every one is tried
   o.resolution = 1e-12;
-  // c = 1.5: the farthest samples (x + y = 3, 1.06 away) are outside, those at x + y = 1 inside;
-  // c = 2.5: the farthest (x + y = 1) are inside, those at x + y = 3 outside.
-  EXPECT_EQ(regions::classify(m, {layer_of({half_plane(1.5)})}, o).visible[0], -1);
-  EXPECT_EQ(regions::classify(m, {layer_of({half_plane(2.5)})}, o).visible[0], 0);
+  // x + y < 1.5: one sample of each inside; < 2.5: three of each.
+  EXPECT_EQ(regions::classify(m, {layer_of({below(1.5)})}, o).visible, (std::vector<int>{-1, -1}));
+  EXPECT_EQ(regions::classify(m, {layer_of({below(2.5)})}, o).visible, (std::vector<int>{0, 0}));
+  // x > 0.9: three samples of the first triangle, one of the second. The face's sample farthest
+  // from the line (x = 5/3) is inside, but the second triangle is mostly outside.
+  EXPECT_EQ(regions::classify(m, {layer_of({right_of(0.9)})}, o).visible, (std::vector<int>{0, -1}));
+  // x + 2y > 8/3 + 0.05, just beyond the first triangle's centroid (4/3, 2/3) towards its sample
+  // (5/3, 4/3): that sample is its farthest from the line (0.72), and the only one inside; the
+  // triangle is mostly outside. Three of the second's samples are inside.
+  const double k = 8.0 / 3 + 0.05;
+  const svg::Subpath beyond = polygon({Vec2(k + 18, -9), Vec2(60, -9), Vec2(60, 9), Vec2(k - 18, 9)});
+  EXPECT_EQ(regions::classify(m, {layer_of({beyond})}, o).visible, (std::vector<int>{-1, 0}));
+  // x > 1.5: two samples of the first triangle on either side, a tie, which its sample farthest
+  // from the line decides (x = 2/3, outside).
+  EXPECT_EQ(regions::classify(m, {layer_of({right_of(1.5)})}, o).visible, (std::vector<int>{-1, -1}));
 }
 
 TEST(Faces, AFaceAnOutlineCrossesIsNotDecidedAtItsFirstSampleFarFromIt) {
