@@ -24,6 +24,7 @@
 #include "svg/path_data.hpp"
 #include "svg/shapes.hpp"
 #include "svg/stroke.hpp"
+#include "svg/stroke_union.hpp"
 #include "svg/style.hpp"
 #include "svg/text.hpp"
 #include "svg/transform.hpp"
@@ -910,11 +911,15 @@ void Reader::emit_stroke_area(pugi::xml_node node, int source, const std::vector
       layer.bounds.add(c.control_bounds());
     }
     layer.subpaths.push_back(sp.segments);
-    PendingSubpath out{sp.segments, sp.start, source, Paint{}, ctx.stroke, {}, {}, true, true, sp.continues};
-    curve_count_ += out.segments.size();
+    curve_count_ += sp.segments.size();
     if (curve_count_ > options_.max_curves) too_many_curves(node);
-    pending_.push_back(std::move(out));
   }
+  // The regions count windings with the whole outline; the features need only the edge of what
+  // it paints, where that can be found.
+  const std::optional<std::vector<Subpath>> edge =
+      painted_edge(outline, kStrokeTolerance * layer.width, options_.max_curves);
+  for (const Subpath& sp : edge ? *edge : outline)
+    pending_.push_back({sp.segments, sp.start, source, Paint{}, ctx.stroke, {}, {}, true, true, sp.continues});
   if (!layer.subpaths.empty()) soup_.fills.push_back(std::move(layer));
 }
 
