@@ -55,6 +55,13 @@ std::size_t meeting_pairs(const std::vector<std::pair<Vec2, Vec2>>& segments, st
   return pairs;
 }
 
+std::size_t distinct_ends(const std::vector<std::pair<Vec2, Vec2>>& segments) {
+  std::vector<std::pair<double, double>> ends;
+  for (const auto& [a, b] : segments) ends.emplace_back(a.x(), a.y()), ends.emplace_back(b.x(), b.y());
+  std::sort(ends.begin(), ends.end());
+  return static_cast<std::size_t>(std::unique(ends.begin(), ends.end()) - ends.begin());
+}
+
 // Each face's winding number: 0 on the unbounded face, then across each halfedge h from its
 // face (on its left) to its twin's, minus h's jump.
 void wind(Arrangement& arr) {
@@ -87,6 +94,14 @@ bool painted(Arrangement::Face_const_handle f) {
 // Whether h is on the edge of the painted area with the painted side on its left.
 bool on_edge(Halfedge h) {
   return painted(h->face()) && !painted(h->twin()->face());
+}
+
+bool every_edge_on_edge(const Arrangement& arr) {
+  for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
+    const Halfedge h = e;
+    if (!on_edge(h) && !on_edge(h->twin())) return false;
+  }
+  return true;
 }
 
 // The loop of the painted area's edge through h: at each vertex, the next edge is found by turning
@@ -144,6 +159,8 @@ std::optional<std::vector<Subpath>> painted_edge(const std::vector<Subpath>& out
   Arrangement arr;
   CGAL::insert(arr, curves.begin(), curves.end());
   wind(arr);
+  // No crossing and nothing inside (a rectangle's band, most strokes): the outline as it is.
+  if (arr.number_of_vertices() == distinct_ends(segments) && every_edge_on_edge(arr)) return outline;
   std::vector<Subpath> out;
   std::unordered_set<const void*> used;
   for (auto e = arr.halfedges_begin(); e != arr.halfedges_end(); ++e) {

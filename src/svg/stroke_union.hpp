@@ -17,7 +17,8 @@
 namespace curvemesh::svg {
 
 // The loops bounding the nonzero fill of `outline` (closed subpaths), each with the painted side
-// on its left as x and y go (winding number 1 inside them, 0 outside); nothing when a segment of the outline is not straight within `tolerance` (a curve
+// on its left as x and y go (winding number 1 inside them, 0 outside); `outline` itself when it is
+// that edge already (no crossing, nothing inside the painted area: most strokes); nothing when a segment of the outline is not straight within `tolerance` (a curve
 // would need its crossings with curves: the outline is kept as it is), or when its segments'
 // bounding boxes meet in more than `max_pairs` pairs (its crossings would be too many to be worth
 // finding here: the later stages refuse such a drawing by their own limits).

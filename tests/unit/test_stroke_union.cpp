@@ -122,3 +122,18 @@ TEST(PaintedEdge, AnOutlineWithCurvesOrTooManyCrossingsIsKept) {
   const auto outline = svg::stroke_outline(path, style(1, svg::LineJoin::miter, svg::LineCap::butt));
   EXPECT_FALSE(svg::painted_edge(outline, 1e-12, 3));
 }
+
+TEST(PaintedEdge, AnOutlineThatIsItsOwnEdgeIsKeptAsItIs) {
+  // A rectangle's band: two loops, the outer and the inner side, neither crossing the other.
+  const auto outline = svg::stroke_outline(svg::parse_path_data("M 0 0 H 10 V 6 H 0 Z"),
+                                           style(1, svg::LineJoin::miter, svg::LineCap::butt));
+  const auto edge = svg::painted_edge(outline, 1e-12, 1000);
+  ASSERT_TRUE(edge);
+  ASSERT_EQ(edge->size(), outline.size());
+  for (std::size_t i = 0; i < outline.size(); ++i) {
+    EXPECT_EQ(edge->at(i).start, outline[i].start);
+    ASSERT_EQ(edge->at(i).segments.size(), outline[i].segments.size());
+    for (std::size_t k = 0; k < outline[i].segments.size(); ++k)
+      EXPECT_EQ(edge->at(i).segments[k].p, outline[i].segments[k].p);
+  }
+}
