@@ -99,7 +99,7 @@ std::optional<Problem> prepare_problem(const SolveOptions& o, int* exit_code) {
   std::optional<pipeline::DomainMesh> domain = pipeline::cut_domain(p.drawing, o.domain);
   if (!domain) {
     say(o.input + ": the domain '" + pipeline::domain_name(o.domain) + "' is empty (" +
-        pipeline::empty_domain_reason(o.domain, p.drawing.has_strokes) + "); try --domain box");
+        pipeline::empty_domain_reason(o.domain, p.drawing.has_fills, p.drawing.has_strokes) + "); try --domain box");
     *exit_code = kInvalidInput;
     return std::nullopt;
   }

@@ -23,7 +23,8 @@ struct DomainMesh {
 std::optional<DomainMesh> cut_domain(const MeshedDrawing& drawing, Domain domain);
 
 // Why `domain` came out empty, for a message: "no part of the box is enclosed by its curves".
-std::string empty_domain_reason(Domain domain, bool has_strokes);
+// `has_fills`, `has_strokes`: whether the drawing fills some element, strokes some as an area.
+std::string empty_domain_reason(Domain domain, bool has_fills, bool has_strokes);
 
 // A domain's name, as every command and the Python module spell it.
 std::string domain_name(Domain domain);

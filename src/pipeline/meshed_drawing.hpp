@@ -27,6 +27,7 @@ struct MeshedDrawing {
   regions::Classification classification;
   double diagonal = 0;               // d, the input's bounding-box diagonal
   bool has_strokes = false;          // some stroke was read as an area (a layer of the paint)
+  bool has_fills = false;            // some element is filled (a layer of the paint)
   double seconds = 0;                // time to read and mesh
 };
 

@@ -225,6 +225,7 @@ MeshedDrawing meshed_drawing(const Result& r) {
   out.line_curve = curves_of_lines(curved.linear, out.mesh, nullptr);  // the whole mesh: its own numbers
   out.diagonal = r.resolved.d;
   out.has_strokes = r.soup.has_stroke_areas();
+  out.has_fills = r.soup.has_fills();
   out.colours = curve_colours(r.soup);
   out.classification = r.classification;
   if (out.classification.faces.of_triangle.empty()) out.classification.faces = regions::find_faces(out.mesh);

@@ -225,7 +225,7 @@ void paint(Result& r, const std::function<void(const std::string&)>& warn) {
   const regions::Painted& p = *r.painted;
   if (p.mesh.triangle_count() == 0) {
     throw invalid(r.name + ": the domain '" + regions::domain_name(o.domain) + "' is empty (" +
-                  empty_domain_reason(o.domain, r.soup.has_stroke_areas()) + ")");
+                  empty_domain_reason(o.domain, r.soup.has_fills(), r.soup.has_stroke_areas()) + ")");
   }
   Json& stats = r.stats;
   stats["domain"] = {{"name", regions::domain_name(o.domain)},

@@ -109,6 +109,8 @@ struct FeatureSoup {
   Box2 bounds() const;
   // Whether some stroke was read as an area (a FillLayer::stroke).
   bool has_stroke_areas() const;
+  // Whether some element is filled (a FillLayer that is not a stroke's).
+  bool has_fills() const;
 };
 
 }  // namespace curvemesh::svg

@@ -1199,6 +1199,10 @@ bool FeatureSoup::has_stroke_areas() const {
   return std::any_of(fills.begin(), fills.end(), [](const FillLayer& layer) { return layer.stroke; });
 }
 
+bool FeatureSoup::has_fills() const {
+  return std::any_of(fills.begin(), fills.end(), [](const FillLayer& layer) { return !layer.stroke; });
+}
+
 Box2 FeatureSoup::bounds() const {
   Box2 b;
   for (const SoupCurve& c : curves) b.add(c.bezier.bounds());

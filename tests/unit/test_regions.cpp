@@ -375,6 +375,18 @@ TEST(Regions, EmptyDomainAndStrokeOnlyDrawings) {
     EXPECT_EQ(e.kind(), Error::Kind::invalid_input);
     EXPECT_NE(std::string(e.what()).find("'filled' is empty"), std::string::npos);
   }
+  // Filled, but far smaller than the drawing: no triangle is mostly inside the dot, and the message
+  // says so rather than that nothing is filled.
+  const std::string dot = doc(R"(<path fill="none" stroke="black" d="M 0 0 L 100 100"/>
+                                 <circle cx="50" cy="10" r="0.001" fill="red"/>)");
+  try {
+    mesh_painted(dot, regions::Domain::filled, false);
+    FAIL() << "an empty domain must be refused";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), Error::Kind::invalid_input);
+    EXPECT_NE(std::string(e.what()).find("no triangle is mostly inside what its fills paint"), std::string::npos)
+        << e.what();
+  }
 }
 
 // End to end: a filled element whose outline runs through every sample point of one face (made
