@@ -30,11 +30,12 @@ std::optional<DomainMesh> cut_domain(const MeshedDrawing& drawing, Domain domain
 std::string empty_domain_reason(Domain domain, bool has_fills, bool has_strokes) {
   if (domain == Domain::evenodd) return "no part of the box is enclosed by its curves";
   if (domain == Domain::outside) return "every part of the box is enclosed by its curves";
-  // Filled shapes and still nothing kept: every triangle is mostly outside them (a triangle an
-  // outline crosses is decided on its own, regions/paint.hpp).
+  // Filled outlines and still nothing kept: every triangle is mostly outside what they paint (a
+  // triangle an outline crosses is decided on its own, regions/paint.hpp).
   if (has_fills)
-    return "no triangle is mostly inside what its fills paint: shapes too small beside the drawing's size, or "
-           "clipped away; a smaller --edge-length and --mu keep small shapes";
+    return "no triangle is mostly inside what its fills paint: filled outlines with no area (a filled open "
+           "line), shapes too small beside the drawing's size, or clipped away; a smaller --edge-length and "
+           "--mu keep small shapes";
   if (domain == Domain::filled) return "nothing of the drawing is filled";
   if (has_strokes)
     return "nothing of the drawing is filled, and its strokes are narrower than --min-stroke-width; a smaller "

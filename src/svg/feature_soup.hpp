@@ -109,7 +109,8 @@ struct FeatureSoup {
   Box2 bounds() const;
   // Whether some stroke was read as an area (a FillLayer::stroke).
   bool has_stroke_areas() const;
-  // Whether some element is filled (a FillLayer that is not a stroke's).
+  // Whether some element is filled with some outline (a FillLayer that is not a stroke's, and has a
+  // subpath: a filled moveto alone has none).
   bool has_fills() const;
 };
 

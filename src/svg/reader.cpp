@@ -1200,7 +1200,8 @@ bool FeatureSoup::has_stroke_areas() const {
 }
 
 bool FeatureSoup::has_fills() const {
-  return std::any_of(fills.begin(), fills.end(), [](const FillLayer& layer) { return !layer.stroke; });
+  return std::any_of(fills.begin(), fills.end(),
+                     [](const FillLayer& layer) { return !layer.stroke && !layer.subpaths.empty(); });
 }
 
 Box2 FeatureSoup::bounds() const {
