@@ -33,6 +33,14 @@ std::string doc(const std::string& body, const std::string& root = "viewBox=\"0 
          body + "</svg>";
 }
 
+// The closed polygon through `ps`, as straight cubics.
+svg::Subpath polygon(const std::vector<Vec2>& ps) {
+  svg::Subpath s;
+  s.start = ps[0];
+  for (std::size_t i = 0; i < ps.size(); ++i) s.segments.push_back(CubicBezier::line(ps[i], ps[(i + 1) % ps.size()]));
+  return s;
+}
+
 svg::FillLayer layer_of(const std::vector<svg::Subpath>& subpaths, svg::FillRule rule = svg::FillRule::nonzero) {
   svg::FillLayer l;
   l.fill = svg::Paint::rgb(1, 2, 3);
@@ -176,12 +184,6 @@ TEST(Faces, AFaceWhoseSamplesAllLieOnTheOutlineIsNotGuessed) {
                            std::pair{1.0 / 6, 2.0 / 3}})
       points.push_back(a + uv.first * (b - a) + uv.second * (c - a));
   }
-  const auto polygon = [](const std::vector<Vec2>& ps) {
-    svg::Subpath s;
-    s.start = ps[0];
-    for (std::size_t i = 0; i < ps.size(); ++i) s.segments.push_back(CubicBezier::line(ps[i], ps[(i + 1) % ps.size()]));
-    return s;
-  };
   regions::ClassifyOptions o;
   o.clearance = 1e-3;
   o.resolution = 1e-12;
@@ -200,12 +202,6 @@ TEST(Faces, AFaceAnOutlineCrossesIsDecidedTriangleByTriangle) {
   m.nodes = {Vec2(0, 0), Vec2(2, 0), Vec2(2, 2), Vec2(0, 2)};
   m.add_triangle(std::vector<int>{0, 1, 2});  // samples at x = 4/3, 2/3, 5/3, 5/3; x + y = 2, 1, 2, 3
   m.add_triangle(std::vector<int>{0, 2, 3});  // samples at x = 2/3, 1/3, 4/3, 1/3; x + y = 2, 1, 3, 2
-  const auto polygon = [](std::vector<Vec2> ps) {
-    svg::Subpath s;
-    s.start = ps[0];
-    for (std::size_t i = 0; i < ps.size(); ++i) s.segments.push_back(CubicBezier::line(ps[i], ps[(i + 1) % ps.size()]));
-    return s;
-  };
   const auto below = [&](double c) {  // x + y < c
     return polygon({Vec2(c + 3, -3), Vec2(-3, c + 3), Vec2(-9, -9)});
   };
